@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+// Pair-level collision: minimum distance when apart, dynamic penetration depth
+// (TPDV/RPDV) when penetrating, between two groups of placed models. This is what
+// the scene runs per listed pair, and what the Bullet plugin runs per body pair.
+#pragma once
+
+#include <memory>
+
+#include "smartcollision/model.h"
+#include "smartcollision/placement.h"
+#include "smartcollision/settings.h"
+
+namespace sc {
+
+namespace detail {
+struct PairState;
+}
+
+/// One direction of a pair: target T, opponent O. All vectors in world coordinates.
+/// Fields other than the ids are valid only when code == Ok.
+struct DirectedResult {
+  ErrorCode code = ErrorCode::NoResult;  ///< Ok, NoResult or InvalidInitialTransformation
+  int target_object = -1;    ///< Part::id of T's part in the reported contact
+  int opponent_object = -1;  ///< Part::id of O's part
+  int target_piece = -1;     ///< piece index within that part's model
+  int opponent_piece = -1;
+  /// > 0: separated, the minimum distance. <= 0: penetrating, -|tpdv|.
+  double distance = 0.0;
+  /// Unit; from O towards T: moving T along it increases separation.
+  Vec3 normal = Vec3::UnitX();
+  /// Closest points when separated; contact points with T at its contact pose otherwise.
+  Vec3 point_on_target = Vec3::Zero();
+  Vec3 point_on_opponent = Vec3::Zero();
+  Feature target_feature;
+  Feature opponent_feature;
+  Vec3 tpdv = Vec3::Zero();  ///< current centre of T minus contact centre; 0 when apart
+  Vec3 rpdv = Vec3::Zero();  ///< rotation vector: R(current) = Rot(rpdv) R(contact)
+  Vec3 contact_position = Vec3::Zero();  ///< T's world centre of rotation at contact
+  Quat contact_orientation = Quat::Identity();  ///< T's orientation at contact
+
+  bool penetrating() const { return code == ErrorCode::Ok && distance <= 0.0; }
+};
+
+/// A model placed in a group's local frame. `id` is reported back in results.
+struct Part {
+  const Model* model = nullptr;
+  Rigid group_from_model;
+  int id = -1;
+};
+
+/// A group: rigid set of parts, moved by its placement (its centre of rotation is
+/// the placement's r_LC / r_WC). Parts are read, not owned.
+struct GroupView {
+  const Part* parts = nullptr;
+  int part_count = 0;
+  Placement placement;
+};
+
+/// Which directions to compute: [0] with group a as target, [1] with b as target.
+struct Directions {
+  bool a_target = true;
+  bool b_target = true;
+};
+
+/// State of one unordered group pair across frames: per direction, the proxy of the
+/// dynamic penetration depth (the last non-penetrating configuration of the target)
+/// and the warm-start caches of the distance queries.
+class SC_API PairTracker {
+ public:
+  PairTracker();
+  ~PairTracker();
+  PairTracker(PairTracker&&) noexcept;
+  PairTracker& operator=(PairTracker&&) noexcept;
+
+  /// Computes the requested directions. `out[0]` has a as target, `out[1]` has b.
+  /// A direction not requested is left NoResult and its state is kept.
+  /// A direction whose pair intersects and that has no tracking state yet reports
+  /// InvalidInitialTransformation; tracking starts once it is seen apart.
+  /// Allocates only while the pair's working sets grow.
+  void update(const GroupView& a, const GroupView& b, Directions directions,
+              const SceneSettings& settings, DirectedResult out[2]);
+
+  /// Drops the tracking state of direction 0 (a target) or 1 (b target).
+  void forget(int direction);
+  /// True when the direction has seen the pair apart and follows it.
+  bool tracking(int direction) const;
+
+ private:
+  std::unique_ptr<detail::PairState> state_;
+};
+
+}  // namespace sc

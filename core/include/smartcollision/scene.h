@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+// The scene manager of manual section 8: objects with ids, rigid groups, the
+// static group, activities of objects, groups and group pairs (Table 8-1), and the
+// per-pair results of UpdateStatus.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "smartcollision/collision.h"
+
+namespace sc {
+
+/// The global static group: always passive, holds every object not in a group.
+inline constexpr int kStaticGroup = -1;
+
+/// One listed pair. results[i] has groups[i] as target. If one group is the static
+/// group it is groups[1].
+struct PairStatus {
+  int groups[2] = {kStaticGroup, kStaticGroup};
+  DirectedResult results[2];
+};
+
+class SC_API Scene {
+ public:
+  explicit Scene(ModelKind kind);
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  ModelKind kind() const;
+
+  // Objects. Ids are the caller's; an object starts in the static group, active.
+  Status addObject(int id, ModelPtr model, const Placement& placement);
+  Status deleteObject(int id);
+  bool hasObject(int id) const;
+  /// The object's world placement (its r_LC kept; r_WC and q follow its group).
+  Result<Placement> objectPlacement(int id) const;
+  Result<int> groupOf(int id) const;
+
+  // Groups. A group exists while it has objects; its frame is its first object's.
+  Status addObjectToGroup(int gid, int id);
+  /// The object stays where it is and returns to the static group.
+  Status removeObjectFromGroup(int gid, int id);
+  bool hasGroup(int gid) const;
+  Result<Placement> groupPlacement(int gid) const;
+  Status setGroupPlacement(int gid, const Placement& placement);
+
+  // Activities.
+  Status setObjectActivity(int id, Activity activity);  ///< Active or Inactive
+  Status setGroupActivity(int gid, Activity activity);
+  /// Overrides Table 8-1 for the pair; one-way values set only target_gid -> opponent_gid.
+  Status setPairActivity(int target_gid, int opponent_gid, PairActivity activity);
+
+  const SceneSettings& settings() const;
+  Status setSettings(const SceneSettings& settings);
+
+  /// Computes every listed pair for the current placements.
+  Status update();
+  /// The pairs of the last update.
+  const std::vector<PairStatus>& pairs() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sc

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// Every tunable of a scene, its default, unit and meaning, in one place.
+#pragma once
+
+#include "smartcollision/types.h"
+
+namespace sc {
+
+/// Default of SceneSettings::tolerance (model units).
+inline constexpr double kDefaultTolerance = 1e-3;
+/// Default of SceneSettings::safety_coefficient; the manual says not to change it.
+inline constexpr double kDefaultSafetyCoefficient = 0.49;
+/// Default of SceneSettings::max_iterations.
+inline constexpr int kDefaultMaxIterations = 30;
+
+struct SceneSettings {
+  /// Pairs whose distance exceeds this report NoResult (model units; +inf = all pairs).
+  double max_distance = kInfinity;
+  /// Accuracy of the dynamic penetration depth: the contact configuration penetrates
+  /// by at most about this and lies within about this of touching (model units, > 0).
+  double tolerance = kDefaultTolerance;
+  /// Fraction of the tolerance a rotational step of the proxy may move a point (0, 1).
+  double safety_coefficient = kDefaultSafetyCoefficient;
+  /// Proxy iterations per update and direction (>= 1).
+  int max_iterations = kDefaultMaxIterations;
+  RotationMode rotation_mode = RotationMode::Input;
+  /// kT of manual (5-3) and (5-5), used by RotationMode::Mix (force per model unit, > 0).
+  double force_stiffness = 1.0;
+  /// kR of manual (5-4) and (5-5), used by RotationMode::Mix (torque per radian, > 0).
+  double torque_stiffness = 1.0;
+};
+
+/// Ok, or InvalidArgument naming the first field out of range.
+SC_API Status validate(const SceneSettings& settings);
+
+}  // namespace sc

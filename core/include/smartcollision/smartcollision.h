@@ -1,0 +1,10 @@
+// SPDX-License-Identifier: MIT
+// The whole modern API.
+#pragma once
+
+#include "smartcollision/collision.h"
+#include "smartcollision/model.h"
+#include "smartcollision/placement.h"
+#include "smartcollision/scene.h"
+#include "smartcollision/settings.h"
+#include "smartcollision/types.h"

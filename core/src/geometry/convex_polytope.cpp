@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+#include "geometry/convex_polytope.h"
+
+#include <algorithm>
+
+namespace sc::detail {
+
+void ConvexPolytope::finalize() {
+  const int n = static_cast<int>(vertices.size());
+  std::vector<std::vector<int>> neighbours(n);
+  for (const Tri& f : faces) {
+    for (int k = 0; k < 3; ++k) {
+      neighbours[f[k]].push_back(f[(k + 1) % 3]);
+      neighbours[f[k]].push_back(f[(k + 2) % 3]);
+    }
+  }
+  adjacency_start.assign(n + 1, 0);
+  adjacency.clear();
+  for (int v = 0; v < n; ++v) {
+    auto& list = neighbours[v];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    adjacency.insert(adjacency.end(), list.begin(), list.end());
+    adjacency_start[v + 1] = static_cast<int>(adjacency.size());
+  }
+  bounds = Aabb();
+  for (const Vec3& p : vertices) bounds.extend(p);
+  center = n > 0 ? Vec3(0.5 * (bounds.min + bounds.max)) : Vec3::Zero();
+  radius = 0.0;
+  for (const Vec3& p : vertices) radius = std::max(radius, (p - center).norm());
+}
+
+int ConvexPolytope::support(const Vec3& direction, int& hint) const {
+  const int n = static_cast<int>(vertices.size());
+  // Small polytopes: a linear scan beats pointer chasing.
+  if (n <= 32 || adjacency.empty()) {
+    int best = 0;
+    double best_dot = vertices[0].dot(direction);
+    for (int i = 1; i < n; ++i) {
+      const double d = vertices[i].dot(direction);
+      if (d > best_dot) {
+        best_dot = d;
+        best = i;
+      }
+    }
+    hint = best;
+    return best;
+  }
+  // Hill climbing: on a convex surface a vertex no neighbour improves on is a
+  // maximum (flat regions are triangulated, so ties lie on the maximal face).
+  int v = (hint >= 0 && hint < n) ? hint : 0;
+  double v_dot = vertices[v].dot(direction);
+  for (bool improved = true; improved;) {
+    improved = false;
+    int best = v;
+    for (int k = adjacency_start[v]; k < adjacency_start[v + 1]; ++k) {
+      const int w = adjacency[k];
+      const double d = vertices[w].dot(direction);
+      if (d > v_dot) {
+        best = w;
+        v_dot = d;
+        improved = true;
+      }
+    }
+    v = best;
+  }
+  hint = v;
+  return v;
+}
+
+}  // namespace sc::detail

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// Small numeric helpers that never produce NaN from finite input.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "smartcollision/types.h"
+
+namespace sc::detail {
+
+/// v / |v|, or `fallback` when |v| is too small to normalise reliably.
+inline Vec3 normalizedOr(const Vec3& v, const Vec3& fallback) {
+  const double n = v.norm();
+  return n > 1e-300 && std::isfinite(n) ? Vec3(v / n) : fallback;
+}
+
+/// Any unit vector orthogonal to the unit vector n.
+inline Vec3 anyOrthogonal(const Vec3& n) {
+  const Vec3 a = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY();
+  return n.cross(a).normalized();
+}
+
+/// Rotation vector (axis * angle, angle in [0, pi]) of a rotation matrix.
+inline Vec3 rotationVector(const Mat3& r) {
+  const Eigen::AngleAxisd aa(r);
+  const double angle = aa.angle();
+  return std::isfinite(angle) ? Vec3(aa.axis() * angle) : Vec3::Zero();
+}
+
+/// Rotation matrix of a rotation vector (axis * angle).
+inline Mat3 rotationFromVector(const Vec3& w) {
+  const double angle = w.norm();
+  if (angle < 1e-300) return Mat3::Identity();
+  return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+}
+
+inline bool allFinite(const Vec3& v) { return v.allFinite(); }
+
+}  // namespace sc::detail

@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+#include "support/test_support.h"
+
+#include <cmath>
+
+namespace sc::test {
+
+Quat randomRotation(Rng& rng) {
+  const double u1 = uniform(rng, 0, 1), u2 = uniform(rng, 0, 2 * M_PI), u3 = uniform(rng, 0, 2 * M_PI);
+  const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+  return Quat(a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), b * std::cos(u3)).normalized();
+}
+
+Vec3 randomDirection(Rng& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (;;) {
+    const Vec3 v(n(rng), n(rng), n(rng));
+    if (v.norm() > 1e-6) return v.normalized();
+  }
+}
+
+}  // namespace sc::test

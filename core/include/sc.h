@@ -103,6 +103,9 @@ inline constexpr SCenum SC_FEATURE_FACE = 0x0803;
 SC_API const char* SCGetErrorString(SCint code);
 
 class SCSceneManager;
+namespace sc {
+struct Placement;
+}
 
 /// Geometry (pieces) and transformation of one object (manual 6, 7).
 class SC_API SCObject {
@@ -130,6 +133,7 @@ class SC_API SCObject {
 
  private:
   friend class SCSceneManager;
+  sc::Placement currentPlacement() const;
   std::unique_ptr<Impl> impl_;
 };
 

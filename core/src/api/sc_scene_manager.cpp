@@ -1,0 +1,342 @@
+// SPDX-License-Identifier: MIT
+// SCSceneManager: the manual's scene API over sc::Scene. Holds no logic of its
+// own beyond argument checks and the translation of enums and result layouts.
+#include <exception>
+#include <memory>
+
+#include "api/error_codes.h"
+#include "api/facade_impl.h"
+#include "api/transformation_io.h"
+#include "sc.h"
+
+namespace {
+
+using sc::detail::toScCode;
+
+bool toActivity(SCenum v, sc::Activity& out) {
+  switch (v) {
+    case SC_ACTIVITY_ACTIVE: out = sc::Activity::Active; return true;
+    case SC_ACTIVITY_SLEEPING: out = sc::Activity::Sleeping; return true;
+    case SC_ACTIVITY_PASSIVE: out = sc::Activity::Passive; return true;
+    case SC_ACTIVITY_INACTIVE: out = sc::Activity::Inactive; return true;
+    default: return false;
+  }
+}
+
+bool toPairActivity(SCenum v, sc::PairActivity& out) {
+  switch (v) {
+    case SC_ACTIVITY_ACTIVE: out = sc::PairActivity::Active; return true;
+    case SC_ACTIVITY_INACTIVE: out = sc::PairActivity::Inactive; return true;
+    case SC_ACTIVITY_ONE_WAY_ACTIVE: out = sc::PairActivity::OneWayActive; return true;
+    case SC_ACTIVITY_ONE_WAY_INACTIVE: out = sc::PairActivity::OneWayInactive; return true;
+    default: return false;
+  }
+}
+
+bool toRotationMode(SCenum v, sc::RotationMode& out) {
+  switch (v) {
+    case SC_ROTATION_MODE_NONE: out = sc::RotationMode::None; return true;
+    case SC_ROTATION_MODE_INPUT: out = sc::RotationMode::Input; return true;
+    case SC_ROTATION_MODE_FREE: out = sc::RotationMode::Free; return true;
+    case SC_ROTATION_MODE_MIX: out = sc::RotationMode::Mix; return true;
+    default: return false;
+  }
+}
+
+SCenum fromRotationMode(sc::RotationMode m) {
+  switch (m) {
+    case sc::RotationMode::None: return SC_ROTATION_MODE_NONE;
+    case sc::RotationMode::Input: return SC_ROTATION_MODE_INPUT;
+    case sc::RotationMode::Free: return SC_ROTATION_MODE_FREE;
+    case sc::RotationMode::Mix: return SC_ROTATION_MODE_MIX;
+  }
+  return SC_ROTATION_MODE_INPUT;
+}
+
+/// The double-valued attribute field, or null if `attribute` is not one.
+double* doubleField(sc::SceneSettings& s, SCenum attribute) {
+  switch (attribute) {
+    case SC_SCENE_MANAGER_MAX_DISTANCE: return &s.max_distance;
+    case SC_SCENE_MANAGER_TOLERANCE: return &s.tolerance;
+    case SC_SCENE_MANAGER_SAFETY_COEFFICIENT: return &s.safety_coefficient;
+    case SC_SCENE_MANAGER_FORCE_STIFFNESS: return &s.force_stiffness;
+    case SC_SCENE_MANAGER_TORQUE_STIFFNESS: return &s.torque_stiffness;
+    default: return nullptr;
+  }
+}
+
+SCenum featureType(sc::FeatureType t) {
+  switch (t) {
+    case sc::FeatureType::Vertex: return SC_FEATURE_VERTEX;
+    case sc::FeatureType::Edge: return SC_FEATURE_EDGE;
+    case sc::FeatureType::Face: return SC_FEATURE_FACE;
+  }
+  return SC_FEATURE_VERTEX;
+}
+
+template <class Real>
+void write(const sc::Vec3& v, Real* out) {
+  for (int i = 0; i < 3; ++i) out[i] = static_cast<Real>(v[i]);
+}
+
+/// GetStatus for the integer-valued types.
+SCint intStatus(const sc::PairStatus& pair, int d, SCenum type, SCint* out) {
+  const sc::DirectedResult& r = pair.results[d];
+  switch (type) {
+    case SC_STATUS_RESULT:
+      out[0] = toScCode(r.code);
+      return SC_NO_ERROR;
+    case SC_GROUP_ID:
+      out[0] = pair.groups[d];
+      out[1] = pair.groups[1 - d];
+      return SC_NO_ERROR;
+    case SC_OBJECT_ID:
+    case SC_PIECE_ID:
+    case SC_FEATURE_TYPE:
+    case SC_FEATURE_ON_TARGET:
+    case SC_FEATURE_ON_OPPONENT:
+      break;
+    default:
+      return SC_ERROR_INVALID_ARGUMENT;
+  }
+  if (r.code != sc::ErrorCode::Ok) return toScCode(r.code);
+  switch (type) {
+    case SC_OBJECT_ID:
+      out[0] = r.target_object;
+      out[1] = r.opponent_object;
+      break;
+    case SC_PIECE_ID:
+      out[0] = r.target_piece;
+      out[1] = r.opponent_piece;
+      break;
+    case SC_FEATURE_TYPE:
+      out[0] = featureType(r.target_feature.type);
+      out[1] = featureType(r.opponent_feature.type);
+      break;
+    default: {
+      const sc::Feature& f = type == SC_FEATURE_ON_TARGET ? r.target_feature : r.opponent_feature;
+      for (int i = 0; i < 3; ++i) out[i] = f.vertices[i];
+    }
+  }
+  return SC_NO_ERROR;
+}
+
+/// GetStatus for the real-valued types.
+template <class Real>
+SCint realStatus(const sc::DirectedResult& r, SCenum type, Real* out) {
+  switch (type) {
+    case SC_DISTANCE:
+    case SC_CONTACT_NORMAL:
+    case SC_POINT_ON_TARGET:
+    case SC_POINT_ON_OPPONENT:
+    case SC_TPD_VECTOR:
+    case SC_RPD_VECTOR:
+    case SC_CONTACT_POSITION:
+    case SC_CONTACT_ORIENTATION:
+      break;
+    default:
+      return SC_ERROR_INVALID_ARGUMENT;
+  }
+  if (r.code != sc::ErrorCode::Ok) return toScCode(r.code);
+  switch (type) {
+    case SC_DISTANCE: out[0] = static_cast<Real>(r.distance); break;
+    case SC_CONTACT_NORMAL: write(r.normal, out); break;
+    case SC_POINT_ON_TARGET: write(r.point_on_target, out); break;
+    case SC_POINT_ON_OPPONENT: write(r.point_on_opponent, out); break;
+    case SC_TPD_VECTOR: write(r.tpdv, out); break;
+    case SC_RPD_VECTOR: write(r.rpdv, out); break;
+    case SC_CONTACT_POSITION: write(r.contact_position, out); break;
+    default:
+      out[0] = static_cast<Real>(r.contact_orientation.w());
+      out[1] = static_cast<Real>(r.contact_orientation.x());
+      out[2] = static_cast<Real>(r.contact_orientation.y());
+      out[3] = static_cast<Real>(r.contact_orientation.z());
+  }
+  return SC_NO_ERROR;
+}
+
+}  // namespace
+
+SCSceneManager::SCSceneManager(SCenum type)
+    : impl_(std::make_unique<Impl>(type == SC_SCENE_MANAGER_TRIANGLE_SOUP
+                                       ? sc::ModelKind::TriangleSoup
+                                       : sc::ModelKind::ClosedPolyhedron,
+                                   type == SC_SCENE_MANAGER_TRIANGLE_SOUP ||
+                                       type == SC_SCENE_MANAGER_CLOSED_POLYHEDRA)) {}
+
+SCSceneManager::~SCSceneManager() {
+  for (auto& [id, object] : impl_->objects) object->impl_->scene = nullptr;
+}
+
+SCint SCSceneManager::AddObject(SCint id, SCObject* object) {
+  if (object == nullptr) return SC_ERROR_INVALID_ARGUMENT;
+  SCObject::Impl& o = *object->impl_;
+  if (!impl_->known_type || !o.known_type || o.kind != impl_->scene.kind())
+    return SC_ERROR_INVALID_OPERATION;
+  if (o.scene != nullptr) return SC_ERROR_INVALID_OPERATION;
+  if (impl_->objects.count(id)) return SC_ERROR_INVALID_ID;
+  try {
+    auto model = std::make_shared<const sc::Model>(o.kind, o.pieces);
+    const SCint rc = toScCode(impl_->scene.addObject(id, std::move(model), o.placement));
+    if (rc != SC_NO_ERROR) return rc;
+    impl_->objects[id] = object;
+  } catch (const std::exception&) {
+    impl_->scene.deleteObject(id).ok();
+    return SC_ERROR_INVALID_OPERATION;
+  }
+  o.scene = this;
+  o.id = id;
+  return SC_NO_ERROR;
+}
+
+SCint SCSceneManager::DeleteObject(SCint id) {
+  const auto it = impl_->objects.find(id);
+  if (it == impl_->objects.end()) return SC_ERROR_INVALID_ID;
+  SCObject::Impl& o = *it->second->impl_;
+  // The object keeps the pose it had in the scene.
+  const auto placement = impl_->scene.objectPlacement(id);
+  if (placement.hasValue()) o.placement = placement.value();
+  o.scene = nullptr;
+  impl_->objects.erase(it);
+  return toScCode(impl_->scene.deleteObject(id));
+}
+
+SCint SCSceneManager::AddObjectToGroup(SCint gid, SCint id) {
+  if (gid < 0) return SC_ERROR_INVALID_ARGUMENT;
+  return toScCode(impl_->scene.addObjectToGroup(gid, id));
+}
+
+SCint SCSceneManager::DeleteObjectFromGroup(SCint gid, SCint id) {
+  return toScCode(impl_->scene.removeObjectFromGroup(gid, id));
+}
+
+SCint SCSceneManager::DeleteFromGroup(SCint gid, SCint id) { return DeleteObjectFromGroup(gid, id); }
+
+template <class Real>
+static SCint setGroupTransformation(sc::Scene& scene, SCint gid, SCenum type, const Real* v) {
+  if (gid == sc::kStaticGroup) return SC_ERROR_INVALID_OPERATION;
+  auto placement = scene.groupPlacement(gid);
+  if (!placement.hasValue()) return toScCode(placement.status());
+  sc::Placement p = placement.value();
+  const SCint rc = sc::detail::setTransformation(p, type, v);
+  if (rc != SC_NO_ERROR) return rc;
+  return toScCode(scene.setGroupPlacement(gid, p));
+}
+
+template <class Real>
+static SCint getGroupTransformation(const sc::Scene& scene, SCint gid, SCenum type, Real* v) {
+  auto placement = scene.groupPlacement(gid);
+  if (!placement.hasValue()) return toScCode(placement.status());
+  return sc::detail::getTransformation(placement.value(), type, v);
+}
+
+SCint SCSceneManager::SetTransformation(SCint gid, SCenum type, const SCdouble* trans) {
+  return setGroupTransformation(impl_->scene, gid, type, trans);
+}
+SCint SCSceneManager::SetTransformation(SCint gid, SCenum type, const SCfloat* trans) {
+  return setGroupTransformation(impl_->scene, gid, type, trans);
+}
+SCint SCSceneManager::GetTransformation(SCint gid, SCenum type, SCdouble* trans) const {
+  return getGroupTransformation(impl_->scene, gid, type, trans);
+}
+SCint SCSceneManager::GetTransformation(SCint gid, SCenum type, SCfloat* trans) const {
+  return getGroupTransformation(impl_->scene, gid, type, trans);
+}
+
+SCint SCSceneManager::SetActivityObject(SCint id, SCenum activity) {
+  sc::Activity a;
+  if (!toActivity(activity, a)) return SC_ERROR_INVALID_ARGUMENT;
+  return toScCode(impl_->scene.setObjectActivity(id, a));
+}
+
+SCint SCSceneManager::SetActivityGroup(SCint gid, SCenum activity) {
+  sc::Activity a;
+  if (!toActivity(activity, a)) return SC_ERROR_INVALID_ARGUMENT;
+  return toScCode(impl_->scene.setGroupActivity(gid, a));
+}
+
+SCint SCSceneManager::SetActivityPair(SCint gid1, SCint gid2, SCenum activity) {
+  sc::PairActivity a;
+  if (!toPairActivity(activity, a)) return SC_ERROR_INVALID_ARGUMENT;
+  return toScCode(impl_->scene.setPairActivity(gid1, gid2, a));
+}
+
+SCint SCSceneManager::SetAttributeDouble(SCenum attribute, SCdouble value) {
+  sc::SceneSettings s = impl_->scene.settings();
+  double* field = doubleField(s, attribute);
+  if (field == nullptr) return SC_ERROR_INVALID_ARGUMENT;
+  *field = value;
+  return toScCode(impl_->scene.setSettings(s));
+}
+
+SCint SCSceneManager::SetAttributeInteger(SCenum attribute, SCint value) {
+  if (attribute != SC_SCENE_MANAGER_MAX_ITERATION) return SC_ERROR_INVALID_ARGUMENT;
+  sc::SceneSettings s = impl_->scene.settings();
+  s.max_iterations = value;
+  return toScCode(impl_->scene.setSettings(s));
+}
+
+SCint SCSceneManager::SetAttributeEnum(SCenum attribute, SCenum value) {
+  if (attribute != SC_SCENE_MANAGER_ROTATION_MODE) return SC_ERROR_INVALID_ARGUMENT;
+  sc::SceneSettings s = impl_->scene.settings();
+  if (!toRotationMode(value, s.rotation_mode)) return SC_ERROR_INVALID_ARGUMENT;
+  return toScCode(impl_->scene.setSettings(s));
+}
+
+SCint SCSceneManager::GetAttributeDouble(SCenum attribute, SCdouble* value) const {
+  sc::SceneSettings s = impl_->scene.settings();
+  const double* field = doubleField(s, attribute);
+  if (field == nullptr || value == nullptr) return SC_ERROR_INVALID_ARGUMENT;
+  *value = *field;
+  return SC_NO_ERROR;
+}
+
+SCint SCSceneManager::GetAttributeInteger(SCenum attribute, SCint* value) const {
+  if (attribute != SC_SCENE_MANAGER_MAX_ITERATION || value == nullptr)
+    return SC_ERROR_INVALID_ARGUMENT;
+  *value = impl_->scene.settings().max_iterations;
+  return SC_NO_ERROR;
+}
+
+SCint SCSceneManager::GetAttributeEnum(SCenum attribute, SCenum* value) const {
+  if (attribute != SC_SCENE_MANAGER_ROTATION_MODE || value == nullptr)
+    return SC_ERROR_INVALID_ARGUMENT;
+  *value = fromRotationMode(impl_->scene.settings().rotation_mode);
+  return SC_NO_ERROR;
+}
+
+SCint SCSceneManager::UpdateStatus() {
+  try {
+    return toScCode(impl_->scene.update());
+  } catch (const std::exception&) {
+    return SC_ERROR_INVALID_OPERATION;  // out of memory
+  }
+}
+
+SCint SCSceneManager::GetStatus(SCenum type, SCint* value) {
+  if (type != SC_STATUS_COUNT || value == nullptr) return SC_ERROR_INVALID_ARGUMENT;
+  *value = static_cast<SCint>(impl_->scene.pairs().size());
+  return SC_NO_ERROR;
+}
+
+SCint SCSceneManager::GetStatus(SCenum type, SCint* value, SCint index, SCbool reverseFlag) {
+  const auto& pairs = impl_->scene.pairs();
+  if (value == nullptr || index < 0 || index >= static_cast<SCint>(pairs.size()))
+    return SC_ERROR_INVALID_ARGUMENT;
+  if (type == SC_STATUS_COUNT) return GetStatus(type, value);
+  return intStatus(pairs[index], reverseFlag ? 1 : 0, type, value);
+}
+
+SCint SCSceneManager::GetStatus(SCenum type, SCfloat* value, SCint index, SCbool reverseFlag) {
+  const auto& pairs = impl_->scene.pairs();
+  if (value == nullptr || index < 0 || index >= static_cast<SCint>(pairs.size()))
+    return SC_ERROR_INVALID_ARGUMENT;
+  return realStatus(pairs[index].results[reverseFlag ? 1 : 0], type, value);
+}
+
+SCint SCSceneManager::GetStatus(SCenum type, SCdouble* value, SCint index, SCbool reverseFlag) {
+  const auto& pairs = impl_->scene.pairs();
+  if (value == nullptr || index < 0 || index >= static_cast<SCint>(pairs.size()))
+    return SC_ERROR_INVALID_ARGUMENT;
+  return realStatus(pairs[index].results[reverseFlag ? 1 : 0], type, value);
+}

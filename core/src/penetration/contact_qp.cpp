@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: MIT
+// LDP through NNLS. Outline (Lawson & Hanson ch. 23):
+//   1. x = W^(1/2) (z - goal) turns the QP into: minimise |x| s.t. G x >= h,
+//      G = A W^(-1/2), h = b - A goal.
+//   2. NNLS on E = [G^T; h^T], f = (0, ..., 0, 1) gives u >= 0 and r = E u - f.
+//   3. r = 0 means infeasible; otherwise x_j = -r_j / r_(n+1).
+#include "penetration/contact_qp.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <vector>
+
+namespace sc::detail {
+
+namespace {
+
+/// Least squares on the passive columns only; the others are zero.
+VecX solvePassive(const MatX& e, const VecX& f, const std::vector<bool>& passive) {
+  const int m = static_cast<int>(e.cols());
+  std::vector<int> cols;
+  for (int j = 0; j < m; ++j)
+    if (passive[j]) cols.push_back(j);
+  VecX z = VecX::Zero(m);
+  if (cols.empty()) return z;
+  MatX sub(e.rows(), static_cast<Eigen::Index>(cols.size()));
+  for (size_t k = 0; k < cols.size(); ++k) sub.col(static_cast<Eigen::Index>(k)) = e.col(cols[k]);
+  const VecX s = sub.colPivHouseholderQr().solve(f);
+  for (size_t k = 0; k < cols.size(); ++k) z[cols[k]] = s[static_cast<Eigen::Index>(k)];
+  return z;
+}
+
+}  // namespace
+
+VecX nonNegativeLeastSquares(const MatX& e, const VecX& f, int max_iterations) {
+  const int m = static_cast<int>(e.cols());
+  if (max_iterations <= 0) max_iterations = 3 * m + 10;
+  const double tol = 1e-12 * std::max(1.0, e.norm());
+  VecX u = VecX::Zero(m);
+  std::vector<bool> passive(m, false);
+  for (int outer = 0; outer < max_iterations; ++outer) {
+    const VecX w = e.transpose() * (f - e * u);  // negative gradient
+    int best = -1;
+    double best_w = tol;
+    for (int j = 0; j < m; ++j) {
+      if (!passive[j] && w[j] > best_w) {
+        best_w = w[j];
+        best = j;
+      }
+    }
+    if (best < 0) break;  // KKT holds
+    passive[best] = true;
+    for (int inner = 0; inner < max_iterations; ++inner) {
+      const VecX z = solvePassive(e, f, passive);
+      bool positive = true;
+      for (int j = 0; j < m; ++j)
+        if (passive[j] && z[j] <= 0.0) positive = false;
+      if (positive) {
+        u = z;
+        break;
+      }
+      // Step from u towards z until the first passive variable hits zero.
+      double alpha = 1.0;
+      for (int j = 0; j < m; ++j) {
+        if (passive[j] && z[j] <= 0.0) {
+          const double denom = u[j] - z[j];
+          if (denom > 0.0) alpha = std::min(alpha, u[j] / denom);
+        }
+      }
+      u += alpha * (z - u);
+      for (int j = 0; j < m; ++j) {
+        if (passive[j] && u[j] <= tol) {
+          passive[j] = false;
+          u[j] = 0.0;
+        }
+      }
+    }
+  }
+  return u;
+}
+
+QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, const VecX& b) {
+  const int n = static_cast<int>(goal.size());
+  const int m = static_cast<int>(a.rows());
+  QpResult out;
+  out.z = goal;
+  out.lambda = VecX::Zero(m);
+  if (m == 0) {
+    out.feasible = true;
+    return out;
+  }
+  const VecX inv_sqrt_w = weights.cwiseSqrt().cwiseInverse();
+  const MatX g = a * inv_sqrt_w.asDiagonal();
+  const VecX h = b - a * goal;
+  if ((h.array() <= 0.0).all()) {  // the goal itself is feasible
+    out.feasible = true;
+    return out;
+  }
+  MatX e(n + 1, m);
+  e.topRows(n) = g.transpose();
+  e.row(n) = h.transpose();
+  VecX f = VecX::Zero(n + 1);
+  f[n] = 1.0;
+  const VecX u = nonNegativeLeastSquares(e, f);
+  const VecX r = e * u - f;
+  if (r.norm() < 1e-12 || std::abs(r[n]) < 1e-300) return out;  // infeasible
+  const VecX x = -r.head(n) / r[n];
+  out.z = goal + inv_sqrt_w.cwiseProduct(x);
+  // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows.
+  out.lambda = u / std::abs(r[n]);
+  out.feasible = out.z.allFinite();
+  return out;
+}
+
+}  // namespace sc::detail

@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: MIT
+#include "penetration/proxy_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/math_util.h"
+#include "penetration/contact_qp.h"
+
+namespace sc::detail {
+
+namespace {
+
+/// Pose with rotation r whose centre (a point fixed in the target) lands on y.
+Rigid poseAt(const Mat3& r, const Vec3& center, const Vec3& y) { return {r, y - r * center}; }
+
+/// Gap the proxy keeps from contacts, so the normals it reads stay well defined.
+double skinOf(const SceneSettings& s) { return 0.25 * s.tolerance; }
+
+}  // namespace
+
+Vec3 ProxyTracker::seedNormal(GroupPairQuery& query, const LeafContact& c) const {
+  // The pair intersects at the proxy only because the proxy was re-oriented: its
+  // separating direction at the previous (free) proxy is a good exit direction.
+  const LeafContact before = query.pairAt(c.t_leaf, c.o_leaf, previous_proxy_);
+  if (!before.intersecting) return before.normal;
+  const Vec3 t_center = previous_proxy_ * query.targetLeaves()[c.t_leaf].center;
+  return normalizedOr(t_center - query.opponentLeaves()[c.o_leaf].center, Vec3::UnitZ());
+}
+
+void ProxyTracker::buildRows(GroupPairQuery& query, const Rigid& pose) {
+  rows_.clear();
+  for (const LeafContact& c : contacts_) {
+    const Vec3 n = c.intersecting ? seedNormal(query, c) : c.normal;
+    const double sep = query.separationAlong(c.t_leaf, c.o_leaf, pose, n);
+    const Vec3 y = pose.translation;  // rows are written for the pose's translation
+    rows_.push_back({n, n.dot(y) - sep});
+  }
+}
+
+int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
+                        const Vec3& center, const SceneSettings& settings) {
+  const double skin = skinOf(settings);
+  const size_t no = query.opponentLeaves().size();
+  Vec3 y = proxy_ * center;
+  int k = 0;
+  for (; k < settings.max_iterations; ++k) {
+    const Rigid pose = poseAt(rotation, center, y);
+    query.contacts(pose, settings.tolerance, contacts_);
+    buildRows(query, pose);
+    // Rows constrain the pose's translation t = y - R c; shift them to y.
+    const Vec3 rc = rotation * center;
+    const int m = static_cast<int>(rows_.size());
+    MatX a(m, 3);
+    VecX b(m);
+    for (int i = 0; i < m; ++i) {
+      a.row(i) = rows_[i].normal.transpose();
+      b[i] = rows_[i].offset + rows_[i].normal.dot(rc) + skin;
+    }
+    const QpResult qp = solveContactQp(goal_center, Vec3::Ones(), a, b);
+    if (!qp.feasible) break;
+    const Vec3 target = qp.z;
+    const Vec3 delta = target - y;
+    if (delta.norm() <= 1e-12 * (1.0 + y.norm())) break;
+    skip_.assign(query.targetLeaves().size() * no, 0);
+    for (const LeafContact& c : contacts_) skip_[c.t_leaf * no + c.o_leaf] = 1;
+    const double s = query.translationToi(pose, delta, skin, skip_);
+    y = s >= 1.0 ? target : Vec3(y + s * delta);
+    if (m == 0 && s >= 1.0) {  // reached the goal unobstructed
+      ++k;
+      break;
+    }
+  }
+  proxy_ = poseAt(rotation, center, y);
+  return k;
+}
+
+void ProxyTracker::reportApart(GroupPairQuery& query, const Rigid& goal,
+                               const SceneSettings& settings, ProxyOutcome& out) {
+  out.penetrating = false;
+  out.contact_pose = goal;
+  out.tpdv.setZero();
+  out.rpdv.setZero();
+  if (!query.distance(goal, settings.max_distance, out.contact)) {
+    out.code = ErrorCode::NoResult;
+    return;
+  }
+  out.code = ErrorCode::Ok;
+  out.distance = out.contact.gap;
+}
+
+void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                          const SceneSettings& settings, ProxyOutcome& out) {
+  out = ProxyOutcome();
+  if (!tracking_) {
+    if (query.intersects(goal)) {
+      out.code = ErrorCode::InvalidInitialTransformation;
+      return;
+    }
+    tracking_ = true;
+    penetrating_ = false;
+    proxy_ = goal;
+    reportApart(query, goal, settings, out);
+    return;
+  }
+  previous_proxy_ = proxy_;
+  const Vec3 goal_center = goal * center;
+  const bool freeze = settings.rotation_mode == RotationMode::None && penetrating_;
+  const Mat3 rotation = freeze ? previous_proxy_.rotation : goal.rotation;
+  out.iterations = slide(query, rotation, goal_center, center, settings);
+  const bool reached = (proxy_ * center - goal_center).isZero(0.0) && rotation == goal.rotation;
+  if (!reached && settings.rotation_mode == RotationMode::None && !penetrating_) {
+    // Penetration began in this update: None keeps the orientation it had before.
+    proxy_ = previous_proxy_;
+    out.iterations += slide(query, previous_proxy_.rotation, goal_center, center, settings);
+  }
+  if (reached || !reportPenetration(query, goal, center, settings, out)) {
+    penetrating_ = false;
+    proxy_ = goal;
+    reportApart(query, goal, settings, out);
+    return;
+  }
+  penetrating_ = true;
+}
+
+bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
+                                     const Vec3& center, const SceneSettings& settings,
+                                     ProxyOutcome& out) {
+  // Depth against the exact planes (zero skin): unbiased by the skin.
+  const Vec3 y = proxy_ * center;
+  const Vec3 goal_center = goal * center;
+  query.contacts(proxy_, settings.tolerance, contacts_);
+  buildRows(query, proxy_);
+  const Vec3 rc = proxy_.rotation * center;
+  const int m = static_cast<int>(rows_.size());
+  MatX a(m, 3);
+  VecX b(m);
+  for (int i = 0; i < m; ++i) {
+    a.row(i) = rows_[i].normal.transpose();
+    b[i] = rows_[i].offset + rows_[i].normal.dot(rc);
+  }
+  const QpResult qp = solveContactQp(goal_center, Vec3::Ones(), a, b);
+  Vec3 contact_center = y;
+  if (qp.feasible && (Vec3(qp.z) - y).norm() <= settings.tolerance) contact_center = qp.z;
+  const Vec3 tpdv = goal_center - contact_center;
+  const Vec3 rpdv = rotationVector(goal.rotation * proxy_.rotation.transpose());
+  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) return false;  // the goal only touches
+  out.code = ErrorCode::Ok;
+  out.penetrating = true;
+  out.contact_pose = poseAt(proxy_.rotation, center, contact_center);
+  out.tpdv = tpdv;
+  out.rpdv = rpdv;
+  out.distance = -tpdv.norm();
+  // Main contact: the most loaded row, else the first.
+  int main = -1;
+  for (int i = 0; i < m; ++i)
+    if (main < 0 || (qp.feasible && qp.lambda[i] > qp.lambda[main])) main = i;
+  if (main >= 0) {
+    out.contact = contacts_[main];
+    out.contact.point_t += contact_center - y;
+    out.contact.normal = rows_[main].normal;
+  }
+  return true;
+}
+
+}  // namespace sc::detail

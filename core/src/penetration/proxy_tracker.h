@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+// Dynamic penetration depth of one directed pair (manual 5.4, 8.6): a proxy, the
+// last non-penetrating configuration of the target, follows the target's current
+// configuration without ever passing through the opponent.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "query/group_pair_query.h"
+#include "smartcollision/settings.h"
+
+namespace sc::detail {
+
+/// What one update found, in the opponent group's frame.
+struct ProxyOutcome {
+  ErrorCode code = ErrorCode::NoResult;
+  bool penetrating = false;
+  double distance = 0.0;    ///< > 0 apart; <= 0 penetrating (-|tpdv|)
+  LeafContact contact;      ///< closest pair (apart) or main contact at the contact pose
+  Rigid contact_pose;       ///< o_from_t at contact (== goal when apart)
+  Vec3 tpdv = Vec3::Zero();  ///< goal centre minus contact centre
+  Vec3 rpdv = Vec3::Zero();  ///< rotation vector of R_goal R_contact^T
+  int iterations = 0;
+};
+
+/// Outline of one update (design.md section 4; translation-only modes):
+///   1. First sight: intersecting -> InvalidInitialTransformation; else start here.
+///   2. Orient the proxy: Input follows the goal's rotation; None keeps the rotation
+///      of the last pose before penetration began.
+///   3. Up to max_iterations: collect contacts within the tolerance; solve the QP
+///      "closest centre to the goal's centre, every contact's exact separating plane
+///      kept at >= skin" (planes from support mappings are exact for convex leaves);
+///      move towards its solution by conservative advancement against every other
+///      leaf pair, so nothing is passed through. Stop when the step vanishes.
+///   4. Report the depth against the planes at zero skin, so it carries no bias.
+class ProxyTracker {
+ public:
+  /// `goal` places the target group in the opponent group's frame; `center` is the
+  /// target's centre of rotation in its own group frame.
+  void update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+              const SceneSettings& settings, ProxyOutcome& out);
+  void forget() { tracking_ = false; }
+  bool tracking() const { return tracking_; }
+
+ private:
+  struct Row {
+    Vec3 normal;
+    double offset;  ///< normal . y >= offset (zero skin)
+  };
+  void reportApart(GroupPairQuery& query, const Rigid& goal, const SceneSettings& settings,
+                   ProxyOutcome& out);
+  /// Runs step 3 with the proxy rotation fixed to `rotation`; returns the iterations.
+  int slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
+            const Vec3& center, const SceneSettings& settings);
+  /// Fills `out` from the proxy; false when the goal itself only touches.
+  bool reportPenetration(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                         const SceneSettings& settings, ProxyOutcome& out);
+  void buildRows(GroupPairQuery& query, const Rigid& pose);
+  Vec3 seedNormal(GroupPairQuery& query, const LeafContact& c) const;
+
+  bool tracking_ = false;
+  bool penetrating_ = false;
+  Rigid proxy_;           ///< o_from_t of the proxy
+  Rigid previous_proxy_;  ///< proxy at the start of this update (free)
+  std::vector<LeafContact> contacts_;
+  std::vector<Row> rows_;
+  std::vector<std::uint8_t> skip_;
+};
+
+}  // namespace sc::detail

@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+#include "smartcollision/settings.h"
+
+#include <cmath>
+
+namespace sc {
+
+Status validate(const SceneSettings& s) {
+  auto bad = [](const char* what) { return Status(ErrorCode::InvalidArgument, what); };
+  if (std::isnan(s.max_distance) || s.max_distance < 0.0)
+    return bad("max_distance must be >= 0 (+inf allowed)");
+  if (!std::isfinite(s.tolerance) || s.tolerance <= 0.0)
+    return bad("tolerance must be finite and > 0");
+  if (!std::isfinite(s.safety_coefficient) || s.safety_coefficient <= 0.0 ||
+      s.safety_coefficient >= 1.0)
+    return bad("safety_coefficient must be in (0, 1)");
+  if (s.max_iterations < 1) return bad("max_iterations must be >= 1");
+  if (!std::isfinite(s.force_stiffness) || s.force_stiffness <= 0.0)
+    return bad("force_stiffness must be finite and > 0");
+  if (!std::isfinite(s.torque_stiffness) || s.torque_stiffness <= 0.0)
+    return bad("torque_stiffness must be finite and > 0");
+  switch (s.rotation_mode) {
+    case RotationMode::None:
+    case RotationMode::Input:
+      return {};
+    case RotationMode::Free:
+    case RotationMode::Mix:
+      return Status(ErrorCode::InvalidArgument,
+                    "rotation modes Free and Mix are not available yet (see docs/api.md)");
+  }
+  return bad("unknown rotation mode");
+}
+
+}  // namespace sc

@@ -143,7 +143,10 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
   Vec3 contact_center = y;
   if (qp.feasible && (Vec3(qp.z) - y).norm() <= settings.tolerance) contact_center = qp.z;
   const Vec3 tpdv = goal_center - contact_center;
-  const Vec3 rpdv = rotationVector(goal.rotation * proxy_.rotation.transpose());
+  // Exactly zero when the proxy follows the goal's rotation (Input mode).
+  const Vec3 rpdv = proxy_.rotation == goal.rotation
+                        ? Vec3::Zero()
+                        : rotationVector(goal.rotation * proxy_.rotation.transpose());
   if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) return false;  // the goal only touches
   out.code = ErrorCode::Ok;
   out.penetrating = true;

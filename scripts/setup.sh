@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Installs every Debian 12 package SmartCollision needs to build, test, run
-# its demos and benchmarks. Non-interactive and idempotent: packages already
+# its demos and benchmarks, then extracts the CGAL test meshes into .meshes/. Non-interactive and idempotent: packages already
 # present are left alone, and `apt-get update` runs only when something is
 # missing. Needs root (or sudo).
 set -euo pipefail
@@ -25,8 +25,11 @@ for p in "${packages[@]}"; do
   fi
 done
 
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
+  "$root/scripts/extract_meshes.sh" "$root/.meshes"
   exit 0
 fi
 
@@ -40,3 +43,4 @@ echo "setup: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -q </dev/null
 "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}" </dev/null
+"$root/scripts/extract_meshes.sh" "$root/.meshes"

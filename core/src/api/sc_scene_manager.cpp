@@ -165,7 +165,10 @@ SCSceneManager::SCSceneManager(SCenum type)
                                        type == SC_SCENE_MANAGER_CLOSED_POLYHEDRA)) {}
 
 SCSceneManager::~SCSceneManager() {
-  for (auto& [id, object] : impl_->objects) object->impl_->scene = nullptr;
+  for (auto& [id, object] : impl_->objects) {
+    object->impl_->placement = object->currentPlacement();  // kept, as in DeleteObject
+    object->impl_->scene = nullptr;
+  }
 }
 
 SCint SCSceneManager::AddObject(SCint id, SCObject* object) {

@@ -67,13 +67,24 @@ struct Scene::Impl {
     return groups.at(o.group).placement.worldFromLocal() * o.group_from_model;
   }
 
-  /// Tracking state is about the geometry of a group: drop it when that changes.
+  /// Tracking state is about the shape of a moving group: drop it when that changes.
+  /// The static world changes often (obstacles come and go) and does not move, so
+  /// its changes keep every state; a target then meeting a new object is pushed out
+  /// from its proxy.
   void forgetPairsOf(int gid) {
+    if (gid == kStaticGroup) return;
     for (auto& [key, tracker] : trackers) {
       if (key.first == gid || key.second == gid) {
         tracker.forget(0);
         tracker.forget(1);
       }
+    }
+  }
+
+  void forgetAsTarget(int gid) {
+    for (auto& [key, tracker] : trackers) {
+      if (key.first == gid) tracker.forget(0);
+      if (key.second == gid) tracker.forget(1);
     }
   }
 
@@ -221,7 +232,6 @@ Status Scene::addObject(int id, ModelPtr model, const Placement& placement) {
   o.own = placement;
   impl_->objects.emplace(id, std::move(o));
   impl_->groups.at(kStaticGroup).members.push_back(id);
-  impl_->forgetPairsOf(kStaticGroup);
   return {};
 }
 
@@ -231,7 +241,6 @@ Status Scene::deleteObject(int id) {
   if (it->second.group != kStaticGroup) impl_->moveToGroup(id, it->second, kStaticGroup);
   auto& members = impl_->groups.at(kStaticGroup).members;
   members.erase(std::find(members.begin(), members.end(), id));
-  impl_->forgetPairsOf(kStaticGroup);
   impl_->objects.erase(it);
   return {};
 }
@@ -307,6 +316,9 @@ Status Scene::setGroupActivity(int gid, Activity activity) {
   const auto it = impl_->groups.find(gid);
   if (it == impl_->groups.end()) return invalidId("unknown group id");
   it->second.activity = activity;
+  // A passive or inactive group keeps no collision status (manual 8.4): drop it now,
+  // so that re-activating before the next update cannot resume it.
+  if (activity == Activity::Passive || activity == Activity::Inactive) impl_->forgetAsTarget(gid);
   return {};
 }
 

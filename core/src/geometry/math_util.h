@@ -35,6 +35,13 @@ inline Mat3 rotationFromVector(const Vec3& w) {
   return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
 }
 
-inline bool allFinite(const Vec3& v) { return v.allFinite(); }
+/// Element-wise std::isfinite. Eigen's allFinite() computes x - x, which raises
+/// FE_INVALID on an infinite input: a trap in tests, a false alarm in user code.
+template <class Derived>
+bool allFinite(const Eigen::DenseBase<Derived>& m) {
+  for (Eigen::Index i = 0; i < m.size(); ++i)
+    if (!std::isfinite(m.derived().coeff(i))) return false;
+  return true;
+}
 
 }  // namespace sc::detail

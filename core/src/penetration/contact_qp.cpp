@@ -6,6 +6,8 @@
 //   3. r = 0 means infeasible; otherwise x_j = -r_j / r_(n+1).
 #include "penetration/contact_qp.h"
 
+#include "geometry/math_util.h"
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <vector>
@@ -107,7 +109,7 @@ QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, co
   out.z = goal + inv_sqrt_w.cwiseProduct(x);
   // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows.
   out.lambda = u / std::abs(r[n]);
-  out.feasible = out.z.allFinite();
+  out.feasible = allFinite(out.z);
   return out;
 }
 

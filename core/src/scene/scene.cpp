@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/math_util.h"
 #include "scene/activity_table.h"
 
 namespace sc {
@@ -289,8 +290,8 @@ Status Scene::setGroupPlacement(int gid, const Placement& placement) {
     return Status(ErrorCode::InvalidOperation, "the static group does not move");
   const auto it = impl_->groups.find(gid);
   if (it == impl_->groups.end()) return invalidId("unknown group id");
-  if (!placement.world_center.allFinite() || !placement.local_center.allFinite() ||
-      !placement.orientation.coeffs().allFinite() || placement.orientation.norm() < 0.5)
+  if (!detail::allFinite(placement.world_center) || !detail::allFinite(placement.local_center) ||
+      !detail::allFinite(placement.orientation.coeffs()) || placement.orientation.norm() < 0.5)
     return Status(ErrorCode::InvalidArgument, "non-finite placement");
   it->second.placement = placement;
   it->second.placement.orientation.normalize();

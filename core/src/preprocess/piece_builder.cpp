@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+// buildPiece: validates one piece and preprocesses it: a convex closed piece becomes
+// one patch, a non-convex one is decomposed, a soup is kept as its triangles.
+#include "smartcollision/model.h"
+
+#include "geometry/convex_polytope.h"
+#include "geometry/mesh_validation.h"
+#include "preprocess/convex_decomposition.h"
+#include "preprocess/piece_data.h"
+
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace sc {
+namespace {
+
+using detail::ConvexPolytope;
+using detail::PieceData;
+
+/// Box of the vertices some triangle uses; unused vertices do not count.
+Aabb referencedBounds(const MeshData& mesh) {
+  Aabb box;
+  for (const Tri& f : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) box.extend(mesh.vertices[static_cast<std::size_t>(f[k])]);
+  }
+  return box;
+}
+
+/// A convex piece as its single patch: the referenced vertices in input order
+/// (`original` = input index), the triangles as faces (`face_source` = index).
+ConvexPolytope convexPatch(const MeshData& mesh) {
+  std::vector<int> compact(mesh.vertices.size(), -1);
+  for (const Tri& f : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) compact[static_cast<std::size_t>(f[k])] = 0;
+  }
+  ConvexPolytope patch;
+  for (std::size_t i = 0; i < compact.size(); ++i) {
+    if (compact[i] < 0) continue;
+    compact[i] = static_cast<int>(patch.vertices.size());
+    patch.vertices.push_back(mesh.vertices[i]);
+    patch.original.push_back(static_cast<int>(i));
+  }
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Tri& f = mesh.triangles[t];
+    patch.faces.emplace_back(compact[f[0]], compact[f[1]], compact[f[2]]);
+    patch.face_source.push_back(static_cast<int>(t));
+  }
+  patch.finalize();
+  return patch;
+}
+
+/// A soup's leaves are its triangles, each a two-sided wall: a polytope of three
+/// vertices (coincident ones for a degenerate triangle) with both windings as faces.
+void buildSoupLeaves(PieceData& data) {
+  data.patches.reserve(data.mesh.triangles.size());
+  for (std::size_t t = 0; t < data.mesh.triangles.size(); ++t) {
+    const Tri& f = data.mesh.triangles[t];
+    ConvexPolytope leaf;
+    for (int k = 0; k < 3; ++k) {
+      leaf.vertices.push_back(data.mesh.vertices[static_cast<std::size_t>(f[k])]);
+      leaf.original.push_back(f[k]);
+    }
+    leaf.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
+    leaf.face_source = {static_cast<int>(t), static_cast<int>(t)};
+    leaf.finalize();
+    data.patches.push_back(std::move(leaf));
+  }
+  data.stats.patches = static_cast<int>(data.patches.size());
+  data.stats.hull_vertices = 3 * data.stats.patches;
+}
+
+/// Closed piece, already validated and oriented: its convex patches.
+Status buildPatches(PieceData& data, const ProgressCallback& progress) {
+  if (detail::isConvex(data.mesh)) {
+    data.patches.push_back(convexPatch(data.mesh));
+    data.stats.convex = true;
+  } else {
+    Result<detail::Decomposition> decomposition =
+        detail::decomposeConvexSurface(data.mesh, progress);
+    if (!decomposition.ok()) return decomposition.status();
+    data.patches = std::move(decomposition.value().patches);
+    data.stats.virtual_faces = decomposition.value().virtual_faces;
+  }
+  data.stats.patches = static_cast<int>(data.patches.size());
+  for (const ConvexPolytope& patch : data.patches) {
+    data.stats.hull_vertices += static_cast<int>(patch.vertices.size());
+  }
+  return Status::success();
+}
+
+}  // namespace
+
+Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (options.progress) options.progress(0.0, "validating piece");
+  if (Status s = detail::validateArrays(mesh); !s.ok()) return s;
+
+  auto data = std::make_unique<PieceData>();
+  data->kind = kind;
+  data->stats.vertices = static_cast<int>(mesh.vertices.size());
+  data->stats.triangles = static_cast<int>(mesh.triangles.size());
+  if (kind == ModelKind::ClosedPolyhedron) {
+    if (Status s = detail::validateClosed(mesh, data->stats.flipped); !s.ok()) return s;
+  }
+  data->mesh = std::move(mesh);
+  data->bounds = referencedBounds(data->mesh);
+  if (kind == ModelKind::ClosedPolyhedron) {
+    if (Status s = buildPatches(*data, options.progress); !s.ok()) return s;
+  } else {
+    buildSoupLeaves(*data);
+  }
+  data->stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.progress) options.progress(1.0, "piece built");
+  return PiecePtr(std::make_shared<const Piece>(std::move(data)));
+}
+
+}  // namespace sc

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// Test shape generators: closed outward meshes and convex polytopes (boxes,
+// tetrahedra, hulls of random points) at chosen or random scales.
+#pragma once
+
+#include <vector>
+
+#include "geometry/convex_polytope.h"
+#include "smartcollision/model.h"
+#include "support/test_support.h"
+
+namespace sc::test {
+
+/// exp(uniform(log lo, log hi)).
+double logUniform(Rng& rng, double lo, double hi);
+
+/// Axis-aligned box centred at the origin, 12 triangles, outward CCW.
+MeshData boxMesh(const Vec3& half_extents);
+/// Regular tetrahedron centred at the origin with the given circumradius.
+MeshData regularTetrahedronMesh(double circumradius);
+/// Random well-shaped tetrahedron of about `size` around the origin, outward CCW.
+MeshData randomTetrahedronMesh(Rng& rng, double size);
+/// n random points in a random ellipsoid of radius about `size` around the origin.
+std::vector<Vec3> randomPoints(Rng& rng, int n, double size);
+
+/// The polytope with exactly the mesh's vertices and triangles (a convex mesh),
+/// every face real (face_source = triangle index), original = vertex index.
+detail::ConvexPolytope polytopeFromMesh(const MeshData& mesh);
+/// The hull of the points via convexHull (faces virtual, original = point index);
+/// hull faces equal to a triangle of `real_faces` are marked real.
+detail::ConvexPolytope hullOf(const std::vector<Vec3>& points,
+                              const MeshData* real_faces = nullptr);
+/// The polytope's faces as a mesh over its own vertex array.
+MeshData meshOf(const detail::ConvexPolytope& poly);
+
+/// A random convex shape for property tests: its polytope and the points its
+/// `original` indices refer to.
+struct ConvexShape {
+  detail::ConvexPolytope poly;
+  std::vector<Vec3> points;
+  const char* kind = "";
+};
+/// Hull of 4..60 random points, a box or a tetrahedron, of about `size`.
+ConvexShape randomConvexShape(Rng& rng, double size);
+
+}  // namespace sc::test

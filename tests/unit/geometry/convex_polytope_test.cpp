@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+// Support mapping by hill climbing against a linear scan, on hulls large enough
+// (> 32 vertices) that hill climbing is used.
+#include "geometry/convex_polytope.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "support/shapes.h"
+#include "support/test_support.h"
+
+namespace sc::detail {
+namespace {
+
+double bruteSupportValue(const ConvexPolytope& poly, const Vec3& d) {
+  double best = -kInfinity;
+  for (const Vec3& p : poly.vertices) best = std::max(best, p.dot(d));
+  return best;
+}
+
+TEST(ConvexPolytope, HillClimbingSupportEqualsBruteForceOnLargeHulls) {
+  const std::uint64_t seed = 1234;
+  SCOPED_TRACE(::testing::Message() << "seed " << seed);
+  test::Rng rng(seed);
+  int hulls = 0, queries = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const double size = test::logUniform(rng, 1e-2, 1e2);
+    // Points on a squashed sphere: almost all are hull vertices.
+    std::vector<Vec3> points;
+    const Vec3 axes(1.0, test::uniform(rng, 0.2, 1.0), test::uniform(rng, 0.05, 1.0));
+    const int n = 40 + 20 * trial;
+    for (int i = 0; i < n; ++i)
+      points.push_back(size * test::randomDirection(rng).cwiseProduct(axes));
+    const ConvexPolytope poly = test::hullOf(points);
+    ASSERT_GT(poly.vertices.size(), 32u);
+    ++hulls;
+    const int nv = static_cast<int>(poly.vertices.size());
+    int hint = 0;
+    for (int q = 0; q < 200; ++q) {
+      const Vec3 d = test::randomDirection(rng) * test::logUniform(rng, 1e-3, 1e3);
+      if (q % 3 == 0) hint = std::uniform_int_distribution<int>(0, nv - 1)(rng);  // cold hint
+      const int got = poly.support(d, hint);
+      ASSERT_GE(got, 0);
+      ASSERT_LT(got, nv);
+      EXPECT_EQ(hint, got);
+      // Ties are allowed; the value must be the maximum.
+      EXPECT_GE(poly.vertices[got].dot(d), bruteSupportValue(poly, d) - 1e-15 * size * d.norm());
+      ++queries;
+    }
+  }
+  EXPECT_EQ(hulls, 40);
+  EXPECT_EQ(queries, 8000);
+}
+
+TEST(ConvexPolytope, OutOfRangeHintsAreTolerated) {
+  test::Rng rng(5);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 100; ++i) points.push_back(test::randomDirection(rng));
+  const ConvexPolytope poly = test::hullOf(points);
+  for (int hint : {-5, 100000}) {
+    int h = hint;
+    const Vec3 d(0.3, -0.2, 0.9);
+    const int got = poly.support(d, h);
+    EXPECT_GE(poly.vertices[got].dot(d), bruteSupportValue(poly, d) - 1e-15);
+  }
+}
+
+TEST(ConvexPolytope, FinalizeBuildsSymmetricAdjacencyAndBounds) {
+  const ConvexPolytope box = test::polytopeFromMesh(test::boxMesh(Vec3(1, 2, 3)));
+  ASSERT_EQ(box.adjacency_start.size(), 9u);
+  for (int v = 0; v < 8; ++v) {
+    for (int k = box.adjacency_start[v]; k < box.adjacency_start[v + 1]; ++k) {
+      const int w = box.adjacency[k];
+      const auto first = box.adjacency.begin() + box.adjacency_start[w];
+      const auto last = box.adjacency.begin() + box.adjacency_start[w + 1];
+      EXPECT_NE(std::find(first, last, v), last);
+    }
+  }
+  EXPECT_VEC_NEAR(box.bounds.min, Vec3(-1, -2, -3), 0.0);
+  EXPECT_VEC_NEAR(box.bounds.max, Vec3(1, 2, 3), 0.0);
+  EXPECT_NEAR(box.radius, std::sqrt(14.0), 1e-12);
+}
+
+}  // namespace
+}  // namespace sc::detail

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+#include "geometry/halfspace_polytope.h"
+
+#include <utility>
+
+namespace sc::detail {
+
+HalfspacePolytope::HalfspacePolytope(std::vector<Plane> planes, double depth)
+    : planes_(std::move(planes)), depth_(depth) {}
+
+bool HalfspacePolytope::separatedBy(int plane, const Aabb& box) const {
+  const Plane& p = planes_[plane];
+  const Vec3 centre = 0.5 * (box.min + box.max);
+  const Vec3 half = 0.5 * (box.max - box.min);
+  const double lowest = p.normal.dot(centre) - p.normal.cwiseAbs().dot(half);
+  return lowest >= p.offset - depth_;
+}
+
+bool HalfspacePolytope::boxMayReachInterior(const Aabb& box) {
+  const int n = static_cast<int>(planes_.size());
+  if (n == 0) return true;
+  if (separatedBy(hint_, box)) return false;
+  for (int i = 0; i < n; ++i) {
+    if (i != hint_ && separatedBy(i, box)) {
+      hint_ = i;
+      return false;
+    }
+  }
+  return true;
+}
+
+bool HalfspacePolytope::triangleReachesInterior(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const int n = static_cast<int>(planes_.size());
+  // A plane with all three corners outside settles it cheaply, before any clipping.
+  for (int i = 0; i < n; ++i) {
+    const Plane& p = planes_[i];
+    const double limit = p.offset - depth_;
+    if (p.normal.dot(a) >= limit && p.normal.dot(b) >= limit && p.normal.dot(c) >= limit) {
+      return false;
+    }
+  }
+  polygon_.assign({a, b, c});
+  for (int i = 0; i < n && !polygon_.empty(); ++i) {
+    const Plane& p = planes_[i];
+    const double limit = p.offset - depth_;
+    clipped_.clear();
+    const int m = static_cast<int>(polygon_.size());
+    for (int k = 0; k < m; ++k) {
+      const Vec3& from = polygon_[k];
+      const Vec3& to = polygon_[(k + 1) % m];
+      const double s_from = p.normal.dot(from) - limit;
+      const double s_to = p.normal.dot(to) - limit;
+      if (s_from <= 0.0) clipped_.push_back(from);
+      // Strict sign change: the quotient below has a non-zero denominator.
+      if ((s_from < 0.0 && s_to > 0.0) || (s_from > 0.0 && s_to < 0.0)) {
+        clipped_.push_back(from + (s_from / (s_from - s_to)) * (to - from));
+      }
+    }
+    std::swap(polygon_, clipped_);
+  }
+  return !polygon_.empty();
+}
+
+}  // namespace sc::detail

@@ -1,0 +1,603 @@
+// SPDX-License-Identifier: MIT
+// Convex surface decomposition by greedy patch growth (SWIFT++: S. Ehmann and
+// M. Lin, "Accurate and Fast Proximity Queries Between Polyhedra Using Convex
+// Surface Decomposition", Eurographics 2001). Outline:
+//  1. edge adjacency, face planes, convex edges, an AABB tree of the triangles;
+//  2. every edge convex: try the whole surface as one patch;
+//  3. grow each patch breadth-first from a seed across convex (or flat) edges. A
+//     face joins when condition (1) holds: its new vertex lies below every patch
+//     face's plane and every patch vertex below its plane. Both are checked
+//     incrementally, skipping whole chunks of the patch by bounding spheres and
+//     normal cones;
+//  4. condition (2), the hull stays inside the solid, is checked in batches: at
+//     patch sizes doubling since the last verified size, build the patch's
+//     polytope (patch_polytope.h) and test the other triangles against it with
+//     the AABB tree: none may reach deeper than the tolerance into the hull, nor
+//     into the probe prisms of flat or thin hulls. Hulls only grow with the
+//     patch, so a failure is bracketed by binary search; the face after the
+//     longest good prefix is banned from this patch and growth resumes there.
+//     Between checks, a cheap sound filter: the tetrahedron spanned by a face's
+//     new vertex and a face of the last verified hull that the vertex sees lies
+//     inside the new hull, so a triangle reaching into it bans the face at once;
+//  5. seeds are taken next to finished patches, so patches tile the surface;
+//  6. a hull face that equals an input triangle of another patch is a model face
+//     too: it gets that triangle as face_source, so only faces off the surface
+//     count as virtual.
+//
+// "Inside" for self-intersecting input: the hull, shrunk by the tolerance, meets
+// no triangle outside its patch, so it lies in one cell of the space the surface
+// divides, the cell directly behind its own faces. A patch whose own triangles
+// are crossed by other triangles is therefore flat (usually one triangle).
+//
+// Departures from the paper: no patch merging or post-optimisation; the
+// tolerance is relative to the mesh size (patch_polytope.h).
+#include "preprocess/convex_decomposition.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <utility>
+
+#include "geometry/aabb_tree.h"
+#include "geometry/halfspace_polytope.h"
+#include "geometry/math_util.h"
+#include "geometry/triangle_adjacency.h"
+#include "preprocess/patch_polytope.h"
+
+namespace sc::detail {
+namespace {
+
+/// Patch faces and vertices are grouped in chunks of this many (in order of
+/// addition, so spatially compact) for the condition (1) bounds.
+constexpr int kChunk = 32;
+
+/// Bounding sphere of a chunk of patch vertices.
+struct VertexChunk {
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;
+};
+
+/// A chunk of patch faces: max over its faces of (n . p - d) is at most
+/// cone(p - centre) + offset, where cone() bounds n . w over the normal cone.
+struct FaceChunk {
+  Vec3 centre = Vec3::Zero();
+  Vec3 axis = Vec3::UnitZ();
+  double cos_half = -1.0;
+  double sin_half = 0.0;
+  double offset = 0.0;  ///< max over the chunk's faces of n . centre - d
+
+  double bound(const Vec3& p) const {
+    const Vec3 w = p - centre;
+    const double length = w.norm();
+    if (!(length > 0.0)) return offset;
+    const double cos_phi = std::clamp(axis.dot(w) / length, -1.0, 1.0);
+    if (cos_phi >= cos_half) return length + offset;
+    const double sin_phi = std::sqrt(std::max(0.0, 1.0 - cos_phi * cos_phi));
+    return length * (cos_phi * cos_half + sin_phi * sin_half) + offset;
+  }
+};
+
+class Decomposer {
+ public:
+  Decomposer(const MeshData& mesh, const ProgressCallback& progress)
+      : mesh_(mesh), progress_(progress) {}
+
+  Result<Decomposition> run();
+
+ private:
+  Status prepare();
+  bool tryWholeSurface();
+  Status growPatch(int seed, HullCheck mode);
+  int nextSeed();
+
+  bool canJoin(int t) const;
+  bool pointBelowPatch(const Vec3& p) const;
+  bool patchBelowPlane(const Vec3& n, double d) const;
+  void addFace(int t);
+  void enqueueNeighbours(int t);
+  void truncate(int count);
+  void rebuildFrontier();
+  /// Condition (2) on the first `count` faces: the polytope when it holds.
+  Result<PatchPolytope> evaluate(int count, HullCheck mode);
+  bool reachesInside(const PatchRef& patch, std::vector<Plane> planes, const Aabb& bounds,
+                     int also_skip = -1);
+  void setVerified(const ConvexPolytope& hull);
+  bool swallows(int t);
+  void finishPatch(PatchPolytope patch);
+  /// Triangle t and its reverse: the patch of one triangle, built directly for a
+  /// triangle too thin for the ear tests.
+  PatchPolytope twoSided(int t) const;
+  /// The input triangle running a -> b -> c (any rotation), or -1.
+  int triangleOf(int a, int b, int c) const;
+  void reportProgress();
+
+  const MeshData& mesh_;
+  const ProgressCallback& progress_;
+  double tol_ = 0.0;
+  TriangleAdjacency adjacency_;
+  std::vector<Vec3> normals_;
+  std::vector<double> offsets_;
+  std::vector<std::array<char, 3>> convex_edge_;
+  /// Directed edges (from << 32 | to) and their triangles, sorted, for triangleOf.
+  std::vector<std::pair<std::uint64_t, int>> edge_triangle_;
+  AabbTree tree_;
+
+  Decomposition result_;
+  int assigned_ = 0;
+  double reported_ = -1.0;
+  std::deque<int> seeds_;
+  int seed_scan_ = 0;
+
+  // The patch being grown.
+  int serial_ = 0;                ///< patch counter, for banned_
+  int epoch_ = 0;                 ///< frontier generation, for seen_
+  std::vector<int> faces_;        ///< in order of addition
+  std::vector<int> rank_;         ///< per triangle: index in faces_, or -1
+  std::vector<int> verts_;        ///< patch vertices in order of addition
+  std::vector<int> verts_after_;  ///< per face: verts_.size() once it was added
+  std::vector<char> in_patch_;    ///< per vertex
+  std::vector<int> seen_;         ///< per triangle: epoch it was queued in
+  std::vector<int> banned_;       ///< per triangle: patch it failed condition (2) for
+  std::vector<VertexChunk> vertex_chunks_;
+  std::vector<FaceChunk> face_chunks_;
+  std::deque<int> frontier_;
+  /// Faces (corners and outward plane) of the last verified hull.
+  std::vector<std::array<Vec3, 3>> verified_corners_;
+  std::vector<Plane> verified_planes_;
+};
+
+Status Decomposer::prepare() {
+  const int n = static_cast<int>(mesh_.triangles.size());
+  if (n < 4) return {ErrorCode::InvalidGeometry, "decomposition: fewer than four triangles"};
+  for (const Tri& f : mesh_.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      if (f[k] < 0 || f[k] >= static_cast<int>(mesh_.vertices.size())) {
+        return {ErrorCode::InvalidArgument, "decomposition: vertex index out of range"};
+      }
+      // Component-wise: Eigen's allFinite() computes x - x, which traps on infinity.
+      const Vec3& p = mesh_.vertices[f[k]];
+      if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
+        return {ErrorCode::InvalidArgument, "decomposition: non-finite vertex"};
+      }
+    }
+  }
+  Result<TriangleAdjacency> adjacency = TriangleAdjacency::build(mesh_);
+  if (!adjacency.ok()) return adjacency.status();
+  adjacency_ = std::move(adjacency.value());
+  tol_ = decompositionTolerance(mesh_);
+
+  normals_.resize(n);
+  offsets_.resize(n);
+  std::vector<Aabb> boxes(n);
+  for (int t = 0; t < n; ++t) {
+    const Tri& f = mesh_.triangles[t];
+    const Vec3 &a = mesh_.vertices[f[0]], &b = mesh_.vertices[f[1]], &c = mesh_.vertices[f[2]];
+    normals_[t] = normalizedOr((b - a).cross(c - a), Vec3::Zero());
+    if (normals_[t].isZero()) {
+      return {ErrorCode::InvalidGeometry, "decomposition: degenerate triangle"};
+    }
+    offsets_[t] = normals_[t].dot(a);
+    boxes[t].extend(a);
+    boxes[t].extend(b);
+    boxes[t].extend(c);
+  }
+  convex_edge_.resize(n);
+  for (int t = 0; t < n; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int g = adjacency_.neighbour(t, k);
+      const int apex = mesh_.triangles[g][(adjacency_.neighbourEdge(t, k) + 2) % 3];
+      convex_edge_[t][k] = normals_[t].dot(mesh_.vertices[apex]) - offsets_[t] <= tol_ ? 1 : 0;
+    }
+  }
+  tree_ = AabbTree(boxes);
+  edge_triangle_.reserve(3 * static_cast<std::size_t>(n));
+  for (int t = 0; t < n; ++t) {
+    const Tri& f = mesh_.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      edge_triangle_.emplace_back(
+          static_cast<std::uint64_t>(f[k]) << 32 | static_cast<std::uint32_t>(f[(k + 1) % 3]), t);
+    }
+  }
+  std::sort(edge_triangle_.begin(), edge_triangle_.end());
+  rank_.assign(n, -1);
+  seen_.assign(n, -1);
+  banned_.assign(n, -1);
+  in_patch_.assign(mesh_.vertices.size(), 0);
+  result_.triangle_patch.assign(n, -1);
+  return Status::success();
+}
+
+bool Decomposer::pointBelowPatch(const Vec3& p) const {
+  const int full = static_cast<int>(face_chunks_.size());
+  for (int c = 0; c < full; ++c) {
+    if (face_chunks_[c].bound(p) <= tol_) continue;
+    for (int i = c * kChunk; i < (c + 1) * kChunk; ++i) {
+      const int t = faces_[i];
+      if (normals_[t].dot(p) - offsets_[t] > tol_) return false;
+    }
+  }
+  for (int i = full * kChunk; i < static_cast<int>(faces_.size()); ++i) {
+    const int t = faces_[i];
+    if (normals_[t].dot(p) - offsets_[t] > tol_) return false;
+  }
+  return true;
+}
+
+bool Decomposer::patchBelowPlane(const Vec3& n, double d) const {
+  const int full = static_cast<int>(vertex_chunks_.size());
+  for (int c = 0; c < full; ++c) {
+    const VertexChunk& chunk = vertex_chunks_[c];
+    if (n.dot(chunk.centre) + chunk.radius - d <= tol_) continue;
+    for (int i = c * kChunk; i < (c + 1) * kChunk; ++i) {
+      if (n.dot(mesh_.vertices[verts_[i]]) - d > tol_) return false;
+    }
+  }
+  for (int i = full * kChunk; i < static_cast<int>(verts_.size()); ++i) {
+    if (n.dot(mesh_.vertices[verts_[i]]) - d > tol_) return false;
+  }
+  return true;
+}
+
+bool Decomposer::canJoin(int t) const {
+  const Tri& f = mesh_.triangles[t];
+  for (int k = 0; k < 3; ++k) {
+    if (!in_patch_[f[k]] && !pointBelowPatch(mesh_.vertices[f[k]])) return false;
+  }
+  return patchBelowPlane(normals_[t], offsets_[t]);
+}
+
+void Decomposer::addFace(int t) {
+  rank_[t] = static_cast<int>(faces_.size());
+  faces_.push_back(t);
+  for (int k = 0; k < 3; ++k) {
+    const int v = mesh_.triangles[t][k];
+    if (in_patch_[v]) continue;
+    in_patch_[v] = 1;
+    verts_.push_back(v);
+    if (verts_.size() % kChunk != 0) continue;
+    Aabb box;
+    for (std::size_t i = verts_.size() - kChunk; i < verts_.size(); ++i)
+      box.extend(mesh_.vertices[verts_[i]]);
+    VertexChunk chunk;
+    chunk.centre = 0.5 * (box.min + box.max);
+    for (std::size_t i = verts_.size() - kChunk; i < verts_.size(); ++i) {
+      chunk.radius = std::max(chunk.radius, (mesh_.vertices[verts_[i]] - chunk.centre).norm());
+    }
+    vertex_chunks_.push_back(chunk);
+  }
+  verts_after_.push_back(static_cast<int>(verts_.size()));
+  if (faces_.size() % kChunk == 0) {
+    FaceChunk chunk;
+    Vec3 normal_sum = Vec3::Zero(), centre = Vec3::Zero();
+    for (std::size_t i = faces_.size() - kChunk; i < faces_.size(); ++i) {
+      const Tri& f = mesh_.triangles[faces_[i]];
+      normal_sum += normals_[faces_[i]];
+      centre += (mesh_.vertices[f[0]] + mesh_.vertices[f[1]] + mesh_.vertices[f[2]]) / 3.0;
+    }
+    chunk.centre = centre / kChunk;
+    chunk.axis = normalizedOr(normal_sum, Vec3::UnitZ());
+    chunk.cos_half = 1.0;
+    chunk.offset = -kInfinity;
+    for (std::size_t i = faces_.size() - kChunk; i < faces_.size(); ++i) {
+      const int f = faces_[i];
+      chunk.cos_half = std::min(chunk.cos_half, chunk.axis.dot(normals_[f]));
+      chunk.offset = std::max(chunk.offset, normals_[f].dot(chunk.centre) - offsets_[f]);
+    }
+    chunk.cos_half = std::clamp(chunk.cos_half, -1.0, 1.0);
+    chunk.sin_half = std::sqrt(1.0 - chunk.cos_half * chunk.cos_half);
+    face_chunks_.push_back(chunk);
+  }
+  enqueueNeighbours(t);
+}
+
+void Decomposer::enqueueNeighbours(int t) {
+  for (int k = 0; k < 3; ++k) {
+    if (!convex_edge_[t][k]) continue;
+    const int g = adjacency_.neighbour(t, k);
+    if (result_.triangle_patch[g] >= 0 || rank_[g] >= 0 || banned_[g] == serial_ ||
+        seen_[g] == epoch_) {
+      continue;
+    }
+    seen_[g] = epoch_;
+    frontier_.push_back(g);
+  }
+}
+
+void Decomposer::truncate(int count) {
+  for (int i = count; i < static_cast<int>(faces_.size()); ++i) rank_[faces_[i]] = -1;
+  faces_.resize(count);
+  const int keep = count > 0 ? verts_after_[count - 1] : 0;
+  verts_after_.resize(count);
+  for (int i = keep; i < static_cast<int>(verts_.size()); ++i) in_patch_[verts_[i]] = 0;
+  verts_.resize(keep);
+  vertex_chunks_.resize(verts_.size() / kChunk);
+  face_chunks_.resize(faces_.size() / kChunk);
+}
+
+void Decomposer::rebuildFrontier() {
+  ++epoch_;
+  frontier_.clear();
+  for (int t : faces_) enqueueNeighbours(t);
+}
+
+// Other triangles that reach the polytope given by `planes`, shrunk by the
+// tolerance; `bounds` encloses it.
+bool Decomposer::reachesInside(const PatchRef& patch, std::vector<Plane> planes, const Aabb& bounds,
+                               int also_skip) {
+  HalfspacePolytope region(std::move(planes), tol_);
+  bool reached = false;
+  tree_.query(
+      [&](const Aabb& box) {
+        if ((box.min.array() > bounds.max.array()).any() ||
+            (box.max.array() < bounds.min.array()).any()) {
+          return false;
+        }
+        return region.boxMayReachInterior(box);
+      },
+      [&](int t) {
+        if (patch.contains(t) || t == also_skip) return true;
+        const Tri& f = mesh_.triangles[t];
+        if (!region.triangleReachesInterior(mesh_.vertices[f[0]], mesh_.vertices[f[1]],
+                                            mesh_.vertices[f[2]])) {
+          return true;
+        }
+        reached = true;
+        return false;
+      });
+  return reached;
+}
+
+Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
+  const PatchRef patch{faces_, rank_, count};
+  Result<PatchPolytope> built = buildPatchPolytope(mesh_, adjacency_, patch, tol_, mode);
+  if (!built.ok() || count == 1) return built;  // one triangle is the surface itself
+  const PatchPolytope& poly = built.value();
+  if (!poly.flat && reachesInside(patch, poly.planes, poly.polytope.bounds)) {
+    return Status(ErrorCode::InvalidGeometry, "patch: a triangle reaches into its hull");
+  }
+  for (const std::array<Plane, 5>& prism : poly.probes) {
+    Aabb bounds = poly.polytope.bounds;
+    const Vec3 depth = Vec3::Constant(kProbeDepth * tol_);
+    bounds.min -= depth;
+    bounds.max += depth;
+    if (reachesInside(patch, std::vector<Plane>(prism.begin(), prism.end()), bounds)) {
+      return Status(ErrorCode::InvalidGeometry, "patch: a triangle reaches under a pocket");
+    }
+  }
+  return built;
+}
+
+// Grows with HullCheck::Quick checks; the finished patch is built once more on
+// qhull's hull. Should that disagree (rounding at the tolerance), the patch is
+// grown again from its seed with qhull throughout.
+void Decomposer::setVerified(const ConvexPolytope& hull) {
+  verified_corners_.clear();
+  verified_planes_.clear();
+  for (const Tri& f : hull.faces) {
+    const Vec3 &a = hull.vertices[f[0]], &b = hull.vertices[f[1]], &c = hull.vertices[f[2]];
+    const Vec3 twice = (b - a).cross(c - a);
+    if (!(twice.norm() > 0.0)) continue;
+    verified_corners_.push_back({a, b, c});
+    const Vec3 n = twice / twice.norm();
+    verified_planes_.push_back({n, n.dot(a)});
+  }
+}
+
+// True when triangle t's new vertex would make the hull swallow another triangle:
+// for each verified face the vertex sees, the tetrahedron they span is in the new
+// hull. Finds most failures of condition (2) before the batch check does.
+bool Decomposer::swallows(int t) {
+  const Tri& f = mesh_.triangles[t];
+  int fresh = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (!in_patch_[f[k]]) fresh = f[k];
+  }
+  if (fresh < 0) return false;
+  const Vec3& v = mesh_.vertices[fresh];
+  const PatchRef patch{faces_, rank_, static_cast<int>(faces_.size())};
+  for (std::size_t i = 0; i < verified_planes_.size(); ++i) {
+    const Plane& base = verified_planes_[i];
+    if (base.signedDistance(v) <= tol_) continue;
+    const std::array<Vec3, 3>& corner = verified_corners_[i];
+    std::vector<Plane> tetra = {{-base.normal, -base.offset}};
+    Aabb bounds;
+    bounds.extend(v);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = corner[k];
+      const Vec3& q = corner[(k + 1) % 3];
+      bounds.extend(p);
+      Vec3 n = normalizedOr((q - p).cross(v - p), Vec3::Zero());
+      if (n.dot(corner[(k + 2) % 3] - p) > 0.0) n = -n;
+      tetra.push_back({n, n.dot(p)});
+    }
+    if (reachesInside(patch, std::move(tetra), bounds, t)) return true;
+  }
+  return false;
+}
+
+Status Decomposer::growPatch(int seed, HullCheck mode) {
+  ++serial_;
+  ++epoch_;
+  frontier_.clear();
+  addFace(seed);
+  Result<PatchPolytope> best = evaluate(1, mode);
+  if (!best.ok()) best = twoSided(seed);
+  setVerified(best.value().polytope);
+  int verified = 1;
+  int next_check = 2;
+  // Condition (2) on the whole patch; on failure, keep the longest good prefix.
+  auto check = [&]() {
+    const int size = static_cast<int>(faces_.size());
+    Result<PatchPolytope> trial = evaluate(size, mode);
+    if (trial.ok()) {
+      best = std::move(trial);
+      setVerified(best.value().polytope);
+      verified = size;
+      next_check = 2 * size;
+      return;
+    }
+    // The first failing prefix lies in (verified, size].
+    int lo = verified, hi = size;
+    while (hi - lo > 1) {
+      const int mid = lo + (hi - lo) / 2;
+      Result<PatchPolytope> probe = evaluate(mid, mode);
+      if (probe.ok()) {
+        best = std::move(probe);
+        lo = mid;
+      } else {
+        hi = mid;
+      }
+    }
+    // Every patch containing prefix lo + 1 fails too: ban its last face.
+    setVerified(best.value().polytope);
+    banned_[faces_[lo]] = serial_;
+    truncate(lo);
+    verified = lo;
+    next_check = lo + std::max(1, (size - lo) / 2);
+    rebuildFrontier();
+  };
+  for (;;) {
+    while (!frontier_.empty()) {
+      const int t = frontier_.front();
+      frontier_.pop_front();
+      if (result_.triangle_patch[t] >= 0 || rank_[t] >= 0 || banned_[t] == serial_) continue;
+      if (!canJoin(t)) continue;
+      if (swallows(t)) {
+        banned_[t] = serial_;
+        continue;
+      }
+      addFace(t);
+      if (static_cast<int>(faces_.size()) >= next_check) check();
+    }
+    if (static_cast<int>(faces_.size()) == verified) break;
+    check();
+  }
+  if (!best.value().flat && !best.value().used_qhull) {
+    best = evaluate(verified, HullCheck::Qhull);
+    if (!best.ok()) {
+      if (mode == HullCheck::Qhull) return best.status();
+      truncate(0);
+      return growPatch(seed, HullCheck::Qhull);
+    }
+  }
+  finishPatch(std::move(best.value()));
+  return Status::success();
+}
+
+PatchPolytope Decomposer::twoSided(int t) const {
+  PatchPolytope patch;
+  patch.flat = true;
+  patch.virtual_faces = 1;
+  ConvexPolytope& poly = patch.polytope;
+  for (int k = 0; k < 3; ++k) {
+    poly.vertices.push_back(mesh_.vertices[mesh_.triangles[t][k]]);
+    poly.original.push_back(mesh_.triangles[t][k]);
+  }
+  poly.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
+  poly.face_source = {t, -1};
+  poly.finalize();
+  return patch;
+}
+
+int Decomposer::triangleOf(int a, int b, int c) const {
+  const std::uint64_t key = static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(b);
+  const auto it =
+      std::lower_bound(edge_triangle_.begin(), edge_triangle_.end(), std::make_pair(key, -1));
+  if (it == edge_triangle_.end() || it->first != key) return -1;
+  const Tri& f = mesh_.triangles[it->second];
+  return f[0] == c || f[1] == c || f[2] == c ? it->second : -1;
+}
+
+void Decomposer::finishPatch(PatchPolytope patch) {
+  const int index = static_cast<int>(result_.patches.size());
+  ConvexPolytope& poly = patch.polytope;
+  for (std::size_t f = 0; f < poly.faces.size(); ++f) {
+    if (poly.face_source[f] >= 0) continue;
+    const Tri& face = poly.faces[f];
+    const int t =
+        triangleOf(poly.original[face[0]], poly.original[face[1]], poly.original[face[2]]);
+    if (t < 0) continue;
+    poly.face_source[f] = t;
+    --patch.virtual_faces;
+  }
+  for (int t : faces_) {
+    result_.triangle_patch[t] = index;
+    for (int k = 0; k < 3; ++k) seeds_.push_back(adjacency_.neighbour(t, k));
+  }
+  assigned_ += static_cast<int>(faces_.size());
+  result_.virtual_faces += patch.virtual_faces;
+  result_.patches.push_back(std::move(patch.polytope));
+  truncate(0);
+  reportProgress();
+}
+
+int Decomposer::nextSeed() {
+  while (!seeds_.empty()) {
+    const int t = seeds_.front();
+    seeds_.pop_front();
+    if (result_.triangle_patch[t] < 0) return t;
+  }
+  const int n = static_cast<int>(mesh_.triangles.size());
+  while (seed_scan_ < n && result_.triangle_patch[seed_scan_] >= 0) ++seed_scan_;
+  return seed_scan_ < n ? seed_scan_ : -1;
+}
+
+void Decomposer::reportProgress() {
+  if (!progress_) return;
+  const double fraction =
+      static_cast<double>(assigned_) / static_cast<double>(mesh_.triangles.size());
+  if (fraction - reported_ < 0.01 && fraction < 1.0) return;
+  reported_ = fraction;
+  progress_(fraction, "decompose");
+}
+
+// A convex surface is one patch without virtual faces; buildPatchPolytope checks
+// condition (1) for every face on the hull of all vertices.
+bool Decomposer::tryWholeSurface() {
+  for (const std::array<char, 3>& edges : convex_edge_) {
+    if (!edges[0] || !edges[1] || !edges[2]) return false;
+  }
+  const int n = static_cast<int>(mesh_.triangles.size());
+  for (int t = 0; t < n; ++t) {
+    rank_[t] = t;
+    faces_.push_back(t);
+  }
+  Result<PatchPolytope> whole =
+      buildPatchPolytope(mesh_, adjacency_, PatchRef{faces_, rank_, n}, tol_);
+  if (!whole.ok() || whole.value().virtual_faces != 0) {
+    for (int t = 0; t < n; ++t) rank_[t] = -1;
+    faces_.clear();
+    return false;
+  }
+  for (int t = 0; t < n; ++t) {
+    result_.triangle_patch[t] = 0;
+    rank_[t] = -1;
+  }
+  faces_.clear();
+  result_.patches.push_back(std::move(whole.value().polytope));
+  assigned_ = n;
+  reportProgress();
+  return true;
+}
+
+Result<Decomposition> Decomposer::run() {
+  if (Status s = prepare(); !s.ok()) return s;
+  if (progress_) progress_(0.0, "decompose");
+  if (!tryWholeSurface()) {
+    for (int seed = nextSeed(); seed >= 0; seed = nextSeed()) {
+      if (Status s = growPatch(seed, HullCheck::Quick); !s.ok()) return s;
+    }
+  }
+  return std::move(result_);
+}
+
+}  // namespace
+
+Result<Decomposition> decomposeConvexSurface(const MeshData& mesh,
+                                             const ProgressCallback& progress) {
+  return Decomposer(mesh, progress).run();
+}
+
+}  // namespace sc::detail

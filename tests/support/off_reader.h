@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+// Reads Object File Format (OFF) meshes into MeshData; polygons become triangle
+// fans. Only what the CGAL sample meshes use: no colours are interpreted.
+#pragma once
+
+#include <string>
+
+#include "smartcollision/model.h"
+
+namespace sc::test {
+
+/// Parses OFF text: "OFF" (optionally followed by the counts on the same line),
+/// then "#vertices #faces #edges", the vertices, and the faces as "n i0 .. i(n-1)"
+/// (extra numbers after a face, e.g. a colour, are ignored). '#' starts a comment.
+/// InvalidArgument on a bad header, missing or non-numeric data, a non-finite
+/// coordinate, a face with fewer than 3 corners or an index out of range.
+Result<MeshData> parseOff(const std::string& text);
+
+/// Reads and parses the file; File when it cannot be read.
+Result<MeshData> readOff(const std::string& path);
+
+}  // namespace sc::test

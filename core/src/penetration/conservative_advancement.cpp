@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#include "penetration/conservative_advancement.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/math_util.h"
+
+namespace sc::detail {
+
+namespace {
+constexpr int kMaxSteps = 64;
+}
+
+Rigid TwistMotion::at(double s) const {
+  const Mat3 r = rotationFromVector(s * dtheta) * start.rotation;
+  const Vec3 y = start * center + s * dc;
+  return {r, y - r * center};
+}
+
+double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap,
+               const std::vector<LeafPairId>& skip, std::vector<LeafContact>& scratch) {
+  const double angle = motion.dtheta.norm();
+  const Vec3 y0_local = motion.center;
+  // Candidates: every pair within reach of the motion at its start.
+  double reach_rho = 0.0;
+  for (const Leaf& leaf : query.targetLeaves())
+    reach_rho = std::max(reach_rho, (leaf.center - y0_local).norm() + leaf.radius);
+  const double reach = motion.dc.norm() + angle * reach_rho + stop_gap;
+  query.contacts(motion.start, reach, scratch);
+  double limit = 1.0;
+  for (const LeafContact& cand : scratch) {
+    if (cand.intersecting) continue;
+    if (std::binary_search(skip.begin(), skip.end(), LeafPairId{cand.t_leaf, cand.o_leaf}))
+      continue;
+    const Leaf& leaf = query.targetLeaves()[cand.t_leaf];
+    const double rho = (leaf.center - y0_local).norm() + leaf.radius;
+    double s = 0.0;
+    LeafContact c = cand;
+    for (int step = 0; step < kMaxSteps && s < limit; ++step) {
+      if (step > 0) c = query.pairAt(cand.t_leaf, cand.o_leaf, motion.at(s));
+      if (c.intersecting || c.gap <= stop_gap) break;
+      const double rate = std::max(0.0, -c.normal.dot(motion.dc)) + angle * rho;
+      if (rate <= 0.0) {
+        s = limit;
+        break;
+      }
+      s = std::min(limit, s + (c.gap - 0.5 * stop_gap) / rate);
+    }
+    limit = std::min(limit, s);
+  }
+  return limit;
+}
+
+}  // namespace sc::detail

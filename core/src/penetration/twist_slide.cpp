@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+#include "penetration/twist_slide.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/math_util.h"
+#include "penetration/contact_qp.h"
+
+namespace sc::detail {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+Vec6 twistWeights(const SceneSettings& settings, double rho) {
+  Vec6 w;
+  if (settings.rotation_mode == RotationMode::Mix) {
+    w << Vec3::Constant(settings.force_stiffness), Vec3::Constant(settings.torque_stiffness);
+  } else {
+    const double r2 = std::max(rho * rho, 1e-300);
+    w << Vec3::Constant(1.0), Vec3::Constant(1e-6 * r2);
+  }
+  return w;
+}
+
+double targetRadius(const GroupPairQuery& query, const Vec3& center) {
+  double rho = 0.0;
+  for (const Leaf& leaf : query.targetLeaves())
+    rho = std::max(rho, (leaf.center - center).norm() + leaf.radius);
+  return rho;
+}
+
+int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec3& center,
+               const Rigid& previous_proxy, const SceneSettings& settings, double skin,
+               TwistScratch& scratch) {
+  const double rho = targetRadius(query, center);
+  const Vec6 weights = twistWeights(settings, rho);
+  const double cap = settings.safety_coefficient * settings.tolerance;
+  const Vec3 goal_center = goal * center;
+  int k = 0;
+  for (; k < settings.max_iterations; ++k) {
+    const Vec3 y = proxy * center;
+    query.contacts(proxy, settings.tolerance, scratch.contacts);
+    buildContactRows(query, proxy, y, scratch.contacts, previous_proxy, scratch.rows);
+    const int m = static_cast<int>(scratch.rows.size());
+    MatX a(m, 6);
+    VecX b(m);
+    for (int i = 0; i < m; ++i) {
+      const ContactRow& row = scratch.rows[i];
+      a.row(i) << row.normal.transpose(), row.lever.cross(row.normal).transpose();
+      b[i] = skin - row.gap;
+    }
+    Vec6 target;
+    target << goal_center - y, rotationVector(goal.rotation * proxy.rotation.transpose());
+    const QpResult qp = solveContactQp(target, weights, a, b);
+    if (!qp.feasible) break;
+    Vec6 z = qp.z;
+    const double turn = z.tail<3>().norm() * rho;
+    if (m > 0 && turn > cap) z *= cap / turn;  // a shorter step; advancement keeps it safe
+    if (z.head<3>().norm() + z.tail<3>().norm() * rho <= 1e-12 * (1.0 + rho + y.norm())) break;
+    TwistMotion motion;
+    motion.start = proxy;
+    motion.center = center;
+    motion.dc = z.head<3>();
+    motion.dtheta = z.tail<3>();
+    scratch.skip.clear();
+    const double s = advance(query, motion, 0.5 * skin, scratch.skip, scratch.candidates);
+    if (m == 0 && s >= 1.0 && z == target) {  // reached the goal unobstructed
+      proxy = goal;
+      ++k;
+      break;
+    }
+    proxy = motion.at(s);
+  }
+  return k;
+}
+
+}  // namespace sc::detail

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// The proxy step with rotation free (rotation modes Free and Mix): one 6-DOF QP
+// per iteration over the twist (dc, dtheta) of the proxy about its centre.
+#pragma once
+
+#include <vector>
+
+#include "penetration/conservative_advancement.h"
+#include "penetration/contact_rows.h"
+#include "smartcollision/settings.h"
+
+namespace sc::detail {
+
+/// Work arrays kept between updates, so steady state allocates nothing.
+struct TwistScratch {
+  std::vector<LeafContact> contacts;
+  std::vector<LeafContact> candidates;
+  std::vector<ContactRow> rows;
+  std::vector<LeafPairId> skip;
+};
+
+/// Weights (w_T, w_R) of 1/2 w_T |TPDV - dc|^2 + 1/2 w_R |RPDV - dtheta|^2.
+/// Mix: (kT, kR), manual (5-5). Free: rotation almost free, so translation is
+/// minimised first and rotation second. `rho` (target radius about its centre)
+/// makes the Free weights scale-free.
+Eigen::Matrix<double, 6, 1> twistWeights(const SceneSettings& settings, double rho);
+
+/// Moves `proxy` (o_from_t) towards `goal` with rotation free, never through the
+/// opponent: per iteration, contacts within the tolerance give rows kept at gap >=
+/// skin; the QP's twist is capped to a rotational displacement of
+/// safety_coefficient * tolerance at radius rho while in contact (the
+/// linearisation of rotation is first order); conservative advancement applies it.
+/// @return the iterations used.
+int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec3& center,
+               const Rigid& previous_proxy, const SceneSettings& settings, double skin,
+               TwistScratch& scratch);
+
+/// Radius of the target's leaves about its centre (target group frame).
+double targetRadius(const GroupPairQuery& query, const Vec3& center);
+
+}  // namespace sc::detail

@@ -21,6 +21,7 @@ ctest --test-dir "$root/build" -j "$jobs" --output-on-failure --timeout 1200
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 build "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSC_SANITIZE=ON \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DSC_BUILD_DEMOS=OFF -DSC_BUILD_BENCH=OFF
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir "$root/build-asan" -j "$jobs" --output-on-failure --timeout 1800

@@ -66,6 +66,7 @@ inline constexpr SCenum SC_SCENE_MANAGER_MAX_ITERATION = 0x0504;       // intege
 inline constexpr SCenum SC_SCENE_MANAGER_ROTATION_MODE = 0x0505;       // enum
 inline constexpr SCenum SC_SCENE_MANAGER_FORCE_STIFFNESS = 0x0506;     // double
 inline constexpr SCenum SC_SCENE_MANAGER_TORQUE_STIFFNESS = 0x0507;    // double
+inline constexpr SCenum SC_SCENE_MANAGER_THREADS = 0x0508;             // integer; extension (0 = automatic)
 
 // Rotation modes (manual 8.8).
 inline constexpr SCenum SC_ROTATION_MODE_NONE = 0x0601;

@@ -12,6 +12,14 @@ inline constexpr double kDefaultTolerance = 1e-3;
 inline constexpr double kDefaultSafetyCoefficient = 0.49;
 /// Default of SceneSettings::max_iterations.
 inline constexpr int kDefaultMaxIterations = 30;
+/// Largest SceneSettings::threads accepted; 0 (automatic) uses at most kMaxAutoThreads.
+inline constexpr int kMaxThreads = 256;
+inline constexpr int kMaxAutoThreads = 8;
+
+/// How a scene finds the group pairs within the maximum distance. Both list the same
+/// pairs with the same results; BruteForce tests every pair (a reference, and a
+/// baseline for benchmarks).
+enum class Broadphase { Tree, BruteForce };
 
 struct SceneSettings {
   /// Pairs whose distance exceeds this report NoResult (model units; +inf = all pairs).
@@ -28,6 +36,11 @@ struct SceneSettings {
   double force_stiffness = 1.0;
   /// kR of manual (5-4) and (5-5), used by RotationMode::Mix (torque per radian, > 0).
   double torque_stiffness = 1.0;
+  /// Threads evaluating the listed pairs, the caller's included (0 = automatic: the
+  /// hardware's, at most kMaxAutoThreads; 1 = serial). Results are the same, bit for
+  /// bit and in the same order, for any count.
+  int threads = 0;
+  Broadphase broadphase = Broadphase::Tree;
 };
 
 /// Ok, or InvalidArgument naming the first field out of range.

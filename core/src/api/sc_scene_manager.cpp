@@ -65,6 +65,15 @@ double* doubleField(sc::SceneSettings& s, SCenum attribute) {
   }
 }
 
+/// The integer-valued attribute field, or null if `attribute` is not one.
+int* intField(sc::SceneSettings& s, SCenum attribute) {
+  switch (attribute) {
+    case SC_SCENE_MANAGER_MAX_ITERATION: return &s.max_iterations;
+    case SC_SCENE_MANAGER_THREADS: return &s.threads;
+    default: return nullptr;
+  }
+}
+
 SCenum featureType(sc::FeatureType t) {
   switch (t) {
     case sc::FeatureType::Vertex: return SC_FEATURE_VERTEX;
@@ -273,9 +282,10 @@ SCint SCSceneManager::SetAttributeDouble(SCenum attribute, SCdouble value) {
 }
 
 SCint SCSceneManager::SetAttributeInteger(SCenum attribute, SCint value) {
-  if (attribute != SC_SCENE_MANAGER_MAX_ITERATION) return SC_ERROR_INVALID_ARGUMENT;
   sc::SceneSettings s = impl_->scene.settings();
-  s.max_iterations = value;
+  int* field = intField(s, attribute);
+  if (field == nullptr) return SC_ERROR_INVALID_ARGUMENT;
+  *field = value;
   return toScCode(impl_->scene.setSettings(s));
 }
 
@@ -295,9 +305,10 @@ SCint SCSceneManager::GetAttributeDouble(SCenum attribute, SCdouble* value) cons
 }
 
 SCint SCSceneManager::GetAttributeInteger(SCenum attribute, SCint* value) const {
-  if (attribute != SC_SCENE_MANAGER_MAX_ITERATION || value == nullptr)
-    return SC_ERROR_INVALID_ARGUMENT;
-  *value = impl_->scene.settings().max_iterations;
+  sc::SceneSettings s = impl_->scene.settings();
+  const int* field = intField(s, attribute);
+  if (field == nullptr || value == nullptr) return SC_ERROR_INVALID_ARGUMENT;
+  *value = *field;
   return SC_NO_ERROR;
 }
 

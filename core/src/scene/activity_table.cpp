@@ -30,6 +30,14 @@ int PairOverrides::get(int target, int opponent) const {
   return it == directions_.end() ? -1 : (it->second ? 1 : 0);
 }
 
+bool PairOverrides::computesAsTarget(int gid) const {
+  for (auto it = directions_.lower_bound({gid, INT_MIN}); it != directions_.end() && it->first.first == gid;
+       ++it) {
+    if (it->second) return true;
+  }
+  return false;
+}
+
 void PairOverrides::dropGroup(int gid) {
   for (auto it = directions_.begin(); it != directions_.end();) {
     if (it->first.first == gid || it->first.second == gid)

@@ -3,6 +3,7 @@
 // pair settings of 8.4.
 #pragma once
 
+#include <climits>
 #include <map>
 #include <utility>
 
@@ -22,6 +23,8 @@ class PairOverrides {
   void set(int g1, int g2, PairActivity activity);
   /// The override of target -> opponent, if any: 1 computed, 0 not, -1 none.
   int get(int target, int opponent) const;
+  /// True when some override computes a direction with `gid` as target.
+  bool computesAsTarget(int gid) const;
   /// Drops every setting that names `gid`.
   void dropGroup(int gid);
 

@@ -1,35 +1,51 @@
 // SPDX-License-Identifier: MIT
-// Scene manager: objects, groups, activities, and the per-pair trackers.
-// Pairs are enumerated by brute force over groups with an AABB test against the
-// maximum distance; each listed pair runs its PairTracker.
+// Scene manager: objects, groups, activities, the broadphase over groups (a dynamic
+// AABB tree, or brute force), the pair table kept across frames, and the parallel
+// evaluation of the listed pairs into preassigned slots.
 #include "smartcollision/scene.h"
 
 #include <algorithm>
 #include <map>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "geometry/math_util.h"
+#include "scene/aabb_tree.h"
 #include "scene/activity_table.h"
+#include "scene/pair_table.h"
+#include "scene/worker_pool.h"
 
 namespace sc {
 
 namespace {
 
+using detail::PairKey;
+
+/// Fewer listed pairs than this run on the calling thread: waking workers costs more.
+constexpr int kMinParallelPairs = 16;
+
 struct ObjectRec {
+  int id = 0;
   ModelPtr model;
   Placement own;  ///< the object's placement while in the static group
   int group = kStaticGroup;
   Rigid group_from_model;  ///< constant while in a group
   bool active = true;
+  Aabb static_box;  ///< world box while in the static group (it does not move there)
+  int leaf = detail::DynamicAabbTree::kNull;  ///< its own tree leaf while static
 };
 
 struct GroupRec {
+  int id = kStaticGroup;
+  int slot = -1;  ///< index in Impl::slots, the tree leaves' user value
   Placement placement;  ///< identity for the static group
   Activity activity = Activity::Active;
-  std::vector<int> members;  ///< object ids in joining order
+  std::vector<ObjectRec*> members;  ///< in joining order
   std::vector<Part> parts;   ///< active members, rebuilt each update
-  Aabb bounds;               ///< world frame, rebuilt each update
+  Aabb bounds;               ///< world frame, rebuilt each update (moving groups)
+  bool seeker = false;  ///< may be a target of some pair (rebuilt each update)
+  int leaf = detail::DynamicAabbTree::kNull;  ///< moving groups with parts only
 };
 
 /// World AABB of a local AABB under a rigid transform.
@@ -43,12 +59,49 @@ Aabb transformBox(const Aabb& box, const Rigid& world_from_local) {
   return out;
 }
 
+/// Euclidean distance between boxes; symmetric bit for bit.
 double boxDistance(const Aabb& a, const Aabb& b) {
   const Vec3 gap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero());
   return gap.norm();
 }
 
+bool takesPart(const ObjectRec& o) { return o.active && !o.model->pieces().empty(); }
+
 Status invalidId(const char* what) { return Status(ErrorCode::InvalidId, what); }
+
+/// A pair found by the broadphase: its key and its groups in listing roles.
+struct Candidate {
+  PairKey key;
+  const GroupRec* first = nullptr;   ///< groups[0]
+  const GroupRec* second = nullptr;  ///< groups[1]: the static group if in the pair
+  bool operator<(const Candidate& o) const { return key < o.key; }
+  bool operator==(const Candidate& o) const { return key == o.key; }
+};
+
+Candidate candidateOf(const GroupRec& a, const GroupRec& b) {
+  Candidate c;
+  c.key = detail::pairKeyOf(a.id, b.id);
+  const bool a_first = b.id == kStaticGroup || (a.id != kStaticGroup && a.id < b.id);
+  c.first = a_first ? &a : &b;
+  c.second = a_first ? &b : &a;
+  return c;
+}
+
+/// One listed pair to evaluate: its slot in the pair table and both groups.
+struct Job {
+  int entry = 0;
+  const GroupRec* first = nullptr;
+  const GroupRec* second = nullptr;
+  Directions dirs;
+};
+
+GroupView viewOf(const GroupRec& g) {
+  GroupView v;
+  v.parts = g.parts.data();
+  v.part_count = static_cast<int>(g.parts.size());
+  v.placement = g.placement;
+  return v;
+}
 
 }  // namespace
 
@@ -57,11 +110,55 @@ struct Scene::Impl {
   SceneSettings settings;
   std::map<int, ObjectRec> objects;
   std::map<int, GroupRec> groups;  ///< includes the static group
+  std::vector<GroupRec*> slots;    ///< by GroupRec::slot; null when free
+  std::vector<int> free_slots;
   detail::PairOverrides overrides;
-  std::map<std::pair<int, int>, PairTracker> trackers;  ///< key: (groups[0], groups[1])
+  detail::DynamicAabbTree tree;  ///< group leaves and static object leaves (Tree mode)
+  detail::PairTable table;
+  detail::WorkerPool pool;
   std::vector<PairStatus> pairs;
+  // Per-update buffers, capacity kept.
+  std::vector<Candidate> candidates;
+  std::vector<PairKey> listed;
+  std::vector<int> entry_of;
+  std::vector<Job> jobs;
+  std::vector<const GroupRec*> moving;
+  std::vector<const Aabb*> static_boxes;
 
-  explicit Impl(ModelKind k) : kind(k) { groups[kStaticGroup].activity = Activity::Passive; }
+  explicit Impl(ModelKind k) : kind(k) {
+    GroupRec& s = groups[kStaticGroup];
+    s.activity = Activity::Passive;
+    takeSlot(s);
+  }
+
+  // ---- groups and objects ---------------------------------------------------
+
+  void takeSlot(GroupRec& g) {
+    if (free_slots.empty()) {
+      g.slot = static_cast<int>(slots.size());
+      slots.push_back(&g);
+    } else {
+      g.slot = free_slots.back();
+      free_slots.pop_back();
+      slots[g.slot] = &g;
+    }
+  }
+
+  void eraseGroup(int gid) {
+    GroupRec& g = groups.at(gid);
+    if (g.leaf != detail::DynamicAabbTree::kNull) tree.remove(g.leaf);
+    slots[g.slot] = nullptr;
+    free_slots.push_back(g.slot);
+    overrides.dropGroup(gid);
+    table.dropGroup(gid);
+    groups.erase(gid);
+  }
+
+  void dropStaticLeaf(ObjectRec& o) {
+    if (o.leaf == detail::DynamicAabbTree::kNull) return;
+    tree.remove(o.leaf);
+    o.leaf = detail::DynamicAabbTree::kNull;
+  }
 
   Rigid worldFromModel(const ObjectRec& o) const {
     if (o.group == kStaticGroup) return o.own.worldFromLocal();
@@ -73,53 +170,33 @@ struct Scene::Impl {
   /// its changes keep every state; a target then meeting a new object is pushed out
   /// from its proxy.
   void forgetPairsOf(int gid) {
-    if (gid == kStaticGroup) return;
-    for (auto& [key, tracker] : trackers) {
-      if (key.first == gid || key.second == gid) {
-        tracker.forget(0);
-        tracker.forget(1);
-      }
-    }
+    if (gid != kStaticGroup) table.forgetGroup(gid);
   }
 
-  void forgetAsTarget(int gid) {
-    for (auto& [key, tracker] : trackers) {
-      if (key.first == gid) tracker.forget(0);
-      if (key.second == gid) tracker.forget(1);
-    }
-  }
-
-  void moveToGroup(int id, ObjectRec& o, int gid) {
+  void moveToGroup(ObjectRec& o, int gid) {
     const Rigid world_from_model = worldFromModel(o);
     const Placement world = placementOf(o);
     GroupRec& from = groups.at(o.group);
-    from.members.erase(std::find(from.members.begin(), from.members.end(), id));
+    from.members.erase(std::find(from.members.begin(), from.members.end(), &o));
+    if (o.group == kStaticGroup) dropStaticLeaf(o);
     forgetPairsOf(o.group);
-    if (o.group != kStaticGroup && from.members.empty()) {
-      overrides.dropGroup(o.group);
-      dropTrackersOf(o.group);
-      groups.erase(o.group);
-    }
+    if (o.group != kStaticGroup && from.members.empty()) eraseGroup(o.group);
     o.group = gid;
     if (gid == kStaticGroup) {
       o.own = world;
       o.group_from_model = Rigid();
+      o.static_box = transformBox(o.model->bounds(), o.own.worldFromLocal());
     } else {
       auto [it, created] = groups.try_emplace(gid);
-      if (created) it->second.placement = world;  // the first object gives the frame
+      if (created) {
+        it->second.id = gid;
+        it->second.placement = world;  // the first object gives the frame
+        takeSlot(it->second);
+      }
       o.group_from_model = it->second.placement.worldFromLocal().inverse() * world_from_model;
     }
-    groups.at(gid).members.push_back(id);
+    groups.at(gid).members.push_back(&o);
     forgetPairsOf(gid);
-  }
-
-  void dropTrackersOf(int gid) {
-    for (auto it = trackers.begin(); it != trackers.end();) {
-      if (it->first.first == gid || it->first.second == gid)
-        it = trackers.erase(it);
-      else
-        ++it;
-    }
   }
 
   Placement placementOf(const ObjectRec& o) const {
@@ -132,90 +209,191 @@ struct Scene::Impl {
     return p;
   }
 
-  Activity activityOf(int gid) const { return groups.at(gid).activity; }
-
-  bool computes(int target, int opponent) const {
-    if (groups.at(target).parts.empty() || groups.at(opponent).parts.empty()) return false;
-    const int o = overrides.get(target, opponent);
+  bool computes(const GroupRec& target, const GroupRec& opponent) const {
+    if (target.parts.empty() || opponent.parts.empty()) return false;
+    const int o = overrides.get(target.id, opponent.id);
     if (o >= 0) return o == 1;
-    return detail::tableComputes(activityOf(target), activityOf(opponent));
+    return detail::tableComputes(target.activity, opponent.activity);
   }
 
-  void rebuildGroupViews() {
+  // ---- per-update views and the tree ----------------------------------------
+
+  bool useTree() const { return settings.broadphase == Broadphase::Tree; }
+
+  /// Brute force keeps no tree; switching back rebuilds it leaf by leaf.
+  void dropTree() {
+    tree.clear();
     for (auto& [gid, g] : groups) {
-      g.parts.clear();
-      g.bounds = Aabb();
-      const Rigid world_from_group = g.placement.worldFromLocal();
-      for (int id : g.members) {
-        const ObjectRec& o = objects.at(id);
-        if (!o.active || o.model->pieces().empty()) continue;
+      g.leaf = detail::DynamicAabbTree::kNull;
+      for (ObjectRec* o : g.members) o->leaf = detail::DynamicAabbTree::kNull;
+    }
+  }
+
+  void rebuildStatic(GroupRec& g) {
+    const bool tree_on = useTree();
+    for (ObjectRec* o : g.members) {
+      const bool in = takesPart(*o);
+      if (in) {
         Part part;
-        part.model = o.model.get();
-        part.group_from_model = gid == kStaticGroup ? o.own.worldFromLocal() : o.group_from_model;
-        part.id = id;
+        part.model = o->model.get();
+        part.group_from_model = o->own.worldFromLocal();
+        part.id = o->id;
         g.parts.push_back(part);
-        g.bounds.extend(transformBox(o.model->bounds(), world_from_group * part.group_from_model));
+        if (tree_on && o->leaf == detail::DynamicAabbTree::kNull)
+          o->leaf = tree.insert(o->static_box, g.slot);
+      } else {
+        dropStaticLeaf(*o);
       }
     }
   }
 
-  GroupView viewOf(int gid) const {
-    const GroupRec& g = groups.at(gid);
-    GroupView v;
-    v.parts = g.parts.data();
-    v.part_count = static_cast<int>(g.parts.size());
-    v.placement = g.placement;
-    return v;
+  void rebuildMoving(GroupRec& g) {
+    const Rigid world_from_group = g.placement.worldFromLocal();
+    for (const ObjectRec* o : g.members) {
+      if (!takesPart(*o)) continue;
+      Part part;
+      part.model = o->model.get();
+      part.group_from_model = o->group_from_model;
+      part.id = o->id;
+      g.parts.push_back(part);
+      g.bounds.extend(transformBox(o->model->bounds(), world_from_group * part.group_from_model));
+    }
+    if (!useTree()) return;
+    if (g.parts.empty()) {
+      if (g.leaf != detail::DynamicAabbTree::kNull) tree.remove(g.leaf);
+      g.leaf = detail::DynamicAabbTree::kNull;
+    } else if (g.leaf == detail::DynamicAabbTree::kNull) {
+      g.leaf = tree.insert(g.bounds, g.slot);
+    } else {
+      tree.move(g.leaf, g.bounds);
+    }
+  }
+
+  void rebuildGroupViews() {
+    if (!useTree() && !tree.empty()) dropTree();
+    for (auto& [gid, g] : groups) {
+      g.parts.clear();
+      g.bounds = Aabb();
+      if (gid == kStaticGroup)
+        rebuildStatic(g);
+      else
+        rebuildMoving(g);
+      // A pair is listed only if one of its groups computes as target.
+      g.seeker = !g.parts.empty() &&
+                 (g.activity == Activity::Active || overrides.computesAsTarget(gid));
+    }
+  }
+
+  // ---- broadphase -------------------------------------------------------------
+
+  /// The leaf pairs of the tree within the maximum distance, as group pairs. Static
+  /// objects are leaves of their own, so a large static world does not make every
+  /// group a candidate; their pairs are all the pair (group, static).
+  void treeCandidates() {
+    const double max_distance = settings.max_distance;
+    for (const detail::LeafPair& p : tree.pairs(max_distance)) {
+      const GroupRec& a = *slots[tree.user(p.a)];
+      const GroupRec& b = *slots[tree.user(p.b)];
+      if (!a.seeker && !b.seeker) continue;
+      if (boxDistance(tree.box(p.a), tree.box(p.b)) > max_distance) continue;
+      candidates.push_back(candidateOf(a, b));
+    }
+  }
+
+  /// The reference enumeration: every pair of groups, every static object.
+  void bruteForceCandidates() {
+    const double max_distance = settings.max_distance;
+    moving.clear();
+    static_boxes.clear();
+    for (const auto& [gid, g] : groups) {
+      if (g.parts.empty()) continue;
+      if (gid != kStaticGroup) {
+        moving.push_back(&g);
+        continue;
+      }
+      for (const ObjectRec* o : g.members) {
+        if (takesPart(*o)) static_boxes.push_back(&o->static_box);
+      }
+    }
+    const GroupRec& world = groups.at(kStaticGroup);
+    for (size_t i = 0; i < moving.size(); ++i) {
+      const GroupRec& a = *moving[i];
+      if (a.seeker || world.seeker) {
+        for (const Aabb* s : static_boxes) {
+          if (boxDistance(a.bounds, *s) <= max_distance) {
+            candidates.push_back(candidateOf(a, world));
+            break;
+          }
+        }
+      }
+      for (size_t j = i + 1; j < moving.size(); ++j) {
+        const GroupRec& b = *moving[j];
+        if ((a.seeker || b.seeker) && boxDistance(a.bounds, b.bounds) <= max_distance)
+          candidates.push_back(candidateOf(a, b));
+      }
+    }
+  }
+
+  /// The listed pairs, sorted, and their jobs: candidates with at least one computed
+  /// direction.
+  void listPairs() {
+    candidates.clear();
+    if (useTree())
+      treeCandidates();
+    else
+      bruteForceCandidates();
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    listed.clear();
+    jobs.clear();
+    for (const Candidate& c : candidates) {
+      Job job;
+      job.first = c.first;
+      job.second = c.second;
+      job.dirs = Directions{computes(*c.first, *c.second), computes(*c.second, *c.first)};
+      if (!job.dirs.a_target && !job.dirs.b_target) continue;
+      listed.push_back(c.key);
+      jobs.push_back(job);
+    }
+  }
+
+  // ---- evaluation -------------------------------------------------------------
+
+  int threadCount() const {
+    if (settings.threads > 0) return settings.threads;
+    const int hardware = static_cast<int>(std::thread::hardware_concurrency());
+    return std::clamp(hardware, 1, kMaxAutoThreads);
+  }
+
+  void evaluate(int k) {
+    const Job& job = jobs[static_cast<size_t>(k)];
+    PairTracker& tracker = table.entries()[static_cast<size_t>(job.entry)].tracker;
+    PairStatus& status = pairs[static_cast<size_t>(k)];
+    status.groups[0] = job.first->id;
+    status.groups[1] = job.second->id;
+    tracker.update(viewOf(*job.first), viewOf(*job.second), job.dirs, settings, status.results);
+    // Directions not computed keep their state only if their target sleeps.
+    if (!job.dirs.a_target && job.first->activity != Activity::Sleeping) tracker.forget(0);
+    if (!job.dirs.b_target && job.second->activity != Activity::Sleeping) tracker.forget(1);
   }
 
   void update() {
     rebuildGroupViews();
-    pairs.clear();
-    std::vector<std::pair<int, int>> seen;
-    for (auto a = groups.begin(); a != groups.end(); ++a) {
-      for (auto b = std::next(a); b != groups.end(); ++b) {
-        // The static group (the smallest id) is never groups[0].
-        const int g0 = b->first, g1 = a->first;
-        const std::pair<int, int> key =
-            g1 == kStaticGroup ? std::make_pair(g0, g1) : std::make_pair(g1, g0);
-        updatePair(key, seen);
-      }
+    listPairs();
+    table.sync(
+        listed, [this](int gid) { return groups.at(gid).activity == Activity::Sleeping; },
+        entry_of);
+    for (size_t k = 0; k < jobs.size(); ++k) jobs[k].entry = entry_of[k];
+    pairs.resize(jobs.size());
+    const int n = static_cast<int>(jobs.size());
+    const int threads = threadCount();
+    if (threads > 1 && n >= kMinParallelPairs) {
+      pool.resize(threads - 1);
+      auto task = [this](int k) { evaluate(k); };
+      pool.run(n, task);
+    } else {
+      for (int k = 0; k < n; ++k) evaluate(k);
     }
-    std::sort(seen.begin(), seen.end());
-    // Directions not computed keep their state only if their target sleeps.
-    for (auto it = trackers.begin(); it != trackers.end();) {
-      const bool listed = std::binary_search(seen.begin(), seen.end(), it->first);
-      if (!listed) {
-        for (int d = 0; d < 2; ++d) {
-          const int target = d == 0 ? it->first.first : it->first.second;
-          if (activityOf(target) != Activity::Sleeping) it->second.forget(d);
-        }
-        if (!it->second.tracking(0) && !it->second.tracking(1)) {
-          it = trackers.erase(it);
-          continue;
-        }
-      }
-      ++it;
-    }
-  }
-
-  void updatePair(const std::pair<int, int>& key, std::vector<std::pair<int, int>>& seen) {
-    const auto [g0, g1] = key;
-    Directions dirs{computes(g0, g1), computes(g1, g0)};
-    if (!dirs.a_target && !dirs.b_target) return;
-    if (boxDistance(groups.at(g0).bounds, groups.at(g1).bounds) > settings.max_distance) return;
-    seen.push_back(key);
-    PairTracker& tracker = trackers[key];
-    PairStatus status;
-    status.groups[0] = g0;
-    status.groups[1] = g1;
-    tracker.update(viewOf(g0), viewOf(g1), dirs, settings, status.results);
-    for (int d = 0; d < 2; ++d) {
-      const bool computed = d == 0 ? dirs.a_target : dirs.b_target;
-      const int target = d == 0 ? g0 : g1;
-      if (!computed && activityOf(target) != Activity::Sleeping) tracker.forget(d);
-    }
-    pairs.push_back(status);
   }
 };
 
@@ -229,19 +407,23 @@ Status Scene::addObject(int id, ModelPtr model, const Placement& placement) {
     return Status(ErrorCode::InvalidOperation, "object type differs from the scene type");
   if (impl_->objects.count(id)) return invalidId("object id already in the scene");
   ObjectRec o;
+  o.id = id;
   o.model = std::move(model);
   o.own = placement;
-  impl_->objects.emplace(id, std::move(o));
-  impl_->groups.at(kStaticGroup).members.push_back(id);
+  o.static_box = transformBox(o.model->bounds(), o.own.worldFromLocal());
+  auto it = impl_->objects.emplace(id, std::move(o)).first;
+  impl_->groups.at(kStaticGroup).members.push_back(&it->second);
   return {};
 }
 
 Status Scene::deleteObject(int id) {
   const auto it = impl_->objects.find(id);
   if (it == impl_->objects.end()) return invalidId("unknown object id");
-  if (it->second.group != kStaticGroup) impl_->moveToGroup(id, it->second, kStaticGroup);
+  ObjectRec& o = it->second;
+  if (o.group != kStaticGroup) impl_->moveToGroup(o, kStaticGroup);
+  impl_->dropStaticLeaf(o);
   auto& members = impl_->groups.at(kStaticGroup).members;
-  members.erase(std::find(members.begin(), members.end(), id));
+  members.erase(std::find(members.begin(), members.end(), &o));
   impl_->objects.erase(it);
   return {};
 }
@@ -265,7 +447,7 @@ Status Scene::addObjectToGroup(int gid, int id) {
   const auto it = impl_->objects.find(id);
   if (it == impl_->objects.end()) return invalidId("unknown object id");
   if (it->second.group == gid) return {};
-  impl_->moveToGroup(id, it->second, gid);
+  impl_->moveToGroup(it->second, gid);
   return {};
 }
 
@@ -273,7 +455,7 @@ Status Scene::removeObjectFromGroup(int gid, int id) {
   const auto it = impl_->objects.find(id);
   if (it == impl_->objects.end()) return invalidId("unknown object id");
   if (gid == kStaticGroup || it->second.group != gid) return invalidId("the object is not in that group");
-  impl_->moveToGroup(id, it->second, kStaticGroup);
+  impl_->moveToGroup(it->second, kStaticGroup);
   return {};
 }
 
@@ -319,7 +501,8 @@ Status Scene::setGroupActivity(int gid, Activity activity) {
   it->second.activity = activity;
   // A passive or inactive group keeps no collision status (manual 8.4): drop it now,
   // so that re-activating before the next update cannot resume it.
-  if (activity == Activity::Passive || activity == Activity::Inactive) impl_->forgetAsTarget(gid);
+  if (activity == Activity::Passive || activity == Activity::Inactive)
+    impl_->table.forgetTarget(gid);
   return {};
 }
 

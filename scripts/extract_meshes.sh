@@ -10,8 +10,10 @@ repo_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 target_dir="${1:-${repo_dir}/.meshes}"
 tarball="${SC_CGAL_DATA_TARBALL:-/usr/share/doc/libcgal-dev/data.tar.gz}"
 
-# The meshes tests/property/decomposition_invariants_test.cpp decomposes.
-meshes=(bunny00 armadillo fandisk knot1 elephant femur cow camel)
+# The meshes tests/property/decomposition_invariants_test.cpp decomposes, and the
+# open meshes (triangle soups) of tests/property/mesh_distance_fcl_test.cpp.
+meshes=(bunny00 armadillo fandisk knot1 elephant femur cow camel
+        ChineseDragon-10kv lion elephant-with-holes)
 
 if [ ! -r "${tarball}" ]; then
   echo "extract_meshes: ${tarball} not found; install libcgal-demo via scripts/setup.sh" >&2

@@ -34,8 +34,8 @@ void toWorld(const ProxyOutcome& o, const GroupView& target, const GroupView& op
   r.code = o.code;
   if (o.code != ErrorCode::Ok) return;
   const Rigid world_from_o = opponent.placement.worldFromLocal();
-  const Leaf& lt = query.targetLeaves()[o.contact.t_leaf];
-  const Leaf& lo = query.opponentLeaves()[o.contact.o_leaf];
+  const Leaf lt = query.targetLeaf(o.contact.t_leaf);
+  const Leaf lo = query.opponentLeaf(o.contact.o_leaf);
   r.target_object = target.parts[lt.part].id;
   r.opponent_object = opponent.parts[lo.part].id;
   r.target_piece = lt.piece;

@@ -1,14 +1,19 @@
 // SPDX-License-Identifier: MIT
 // buildPiece: validates one piece and preprocesses it: a convex closed piece becomes
-// one patch, a non-convex one is decomposed, a soup is kept as its triangles.
+// one patch, a non-convex one is decomposed, a soup is kept as its triangles; then
+// the hull hierarchy over those leaves. A valid cache file replaces both steps.
 #include "smartcollision/model.h"
 
 #include "geometry/convex_polytope.h"
 #include "geometry/mesh_validation.h"
+#include "preprocess/cache_file.h"
 #include "preprocess/convex_decomposition.h"
+#include "preprocess/hull_bvh.h"
 #include "preprocess/piece_data.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstddef>
 #include <memory>
 #include <utility>
@@ -19,6 +24,19 @@ namespace {
 
 using detail::ConvexPolytope;
 using detail::PieceData;
+
+// Overall progress: validation, then decomposition, then the hierarchy.
+constexpr double kDecompositionStart = 0.05;
+constexpr double kHierarchyStart = 0.85;
+constexpr double kHierarchyEnd = 0.99;
+
+/// `progress` with the stage's fractions mapped into [from, to]; empty if it is.
+ProgressCallback subRange(const ProgressCallback& progress, double from, double to) {
+  if (!progress) return {};
+  return [&progress, from, to](double fraction, const char* stage) {
+    progress(from + (to - from) * std::clamp(fraction, 0.0, 1.0), stage);
+  };
+}
 
 /// Box of the vertices some triangle uses; unused vertices do not count.
 Aabb referencedBounds(const MeshData& mesh) {
@@ -74,6 +92,7 @@ void buildSoupLeaves(PieceData& data) {
 
 /// Closed piece, already validated and oriented: its convex patches.
 Status buildPatches(PieceData& data, const ProgressCallback& progress) {
+  if (progress) progress(0.0, "decompose");
   if (detail::isConvex(data.mesh)) {
     data.patches.push_back(convexPatch(data.mesh));
     data.stats.convex = true;
@@ -91,12 +110,31 @@ Status buildPatches(PieceData& data, const ProgressCallback& progress) {
   return Status::success();
 }
 
+/// Leaves (patches or soup triangles), then the hierarchy over them.
+Status preprocess(PieceData& data, const ProgressCallback& progress) {
+  if (data.kind == ModelKind::ClosedPolyhedron) {
+    const ProgressCallback stage = subRange(progress, kDecompositionStart, kHierarchyStart);
+    if (Status s = buildPatches(data, stage); !s.ok()) return s;
+  } else {
+    buildSoupLeaves(data);
+  }
+  const double from = data.kind == ModelKind::ClosedPolyhedron ? kHierarchyStart
+                                                                : kDecompositionStart;
+  data.hierarchy = detail::buildHullBvh(data.patches, subRange(progress, from, kHierarchyEnd));
+  data.stats.tree_depth = data.hierarchy.depth;
+  return Status::success();
+}
+
 }  // namespace
 
 Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (options.progress) options.progress(0.0, "validating piece");
   if (Status s = detail::validateArrays(mesh); !s.ok()) return s;
+
+  // The cache key is the input as given, before any orientation fix.
+  const bool use_cache = !options.cache_file.empty();
+  const std::uint64_t key = use_cache ? detail::pieceInputHash(kind, mesh) : 0;
 
   auto data = std::make_unique<PieceData>();
   data->kind = kind;
@@ -107,15 +145,18 @@ Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& o
   }
   data->mesh = std::move(mesh);
   data->bounds = referencedBounds(data->mesh);
-  if (kind == ModelKind::ClosedPolyhedron) {
-    if (Status s = buildPatches(*data, options.progress); !s.ok()) return s;
+  Status file_status;
+  if (use_cache && detail::loadPieceCache(options.cache_file, key, *data)) {
+    data->stats.from_cache = true;
   } else {
-    buildSoupLeaves(*data);
+    if (Status s = preprocess(*data, options.progress); !s.ok()) return s;
+    if (use_cache) file_status = detail::savePieceCache(options.cache_file, key, *data);
   }
   data->stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.progress) options.progress(1.0, "piece built");
-  return PiecePtr(std::make_shared<const Piece>(std::move(data)));
+  return Result<PiecePtr>(PiecePtr(std::make_shared<const Piece>(std::move(data))),
+                          std::move(file_status));
 }
 
 }  // namespace sc

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/convex_polytope.h"
+#include "preprocess/hull_bvh.h"
 #include "smartcollision/model.h"
 
 namespace sc::detail {
@@ -17,7 +18,10 @@ struct PieceData {
   Aabb bounds;
   /// Closed polyhedron: the convex patches (one for a convex piece), each a convex
   /// polytope inside the solid whose union of real faces is the piece's surface.
+  /// Triangle soup: one two-sided leaf per input triangle, in input order.
   std::vector<ConvexPolytope> patches;
+  /// Hull hierarchy over `patches` (one node for a convex piece).
+  HullBvh hierarchy;
 };
 
 }  // namespace sc::detail

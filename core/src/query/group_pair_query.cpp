@@ -1,83 +1,258 @@
 // SPDX-License-Identifier: MIT
+// Best-first traversal of two groups' hull hierarchies. Outline (design.md §3):
+//  1. the queue starts with the root pair of every (target piece, opponent piece),
+//     bounded below by their bounding spheres;
+//  2. pop the pair with the smallest lower bound; stop once the policy prunes it
+//     (farther than the best so far or than the query's reach);
+//  3. an inner pair first gets an exact lower bound: GJK on the two node hulls,
+//     warm-started per node pair, stopped as soon as it proves the pair pruned;
+//     if other pairs are now nearer it goes back to the queue;
+//  4. then the larger node is split; children inherit the parent's bound (their
+//     hulls lie inside it) or their spheres' bound if higher;
+//  5. leaf pairs are final: GJK on the leaf polytopes, handed to the policy.
+// Coherence: distance() first evaluates the last call's closest leaf pair, so the
+// traversal starts with a tight bound; and contacts, intersects and translationToi
+// answer without traversal when the last distance, less the most any target point
+// has moved since, already decides them.
 #include "query/group_pair_query.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "preprocess/piece_data.h"
+#include "geometry/math_util.h"
+#include "geometry/triangle_distance.h"
 
 namespace sc::detail {
 
 namespace {
 
 constexpr int kMaxAdvanceSteps = 64;
+/// The remembered distance is trusted to this relative accuracy (GJK's is ~1e-12).
+constexpr double kKnownGapMargin = 1e-9;
 
-std::uint64_t pairKey(int t_leaf, int o_leaf) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(t_leaf)) << 32) |
-         static_cast<std::uint32_t>(o_leaf);
+/// Feature tolerance of a polytope, as the pair tracker reports features.
+double featureTolerance(const ConvexPolytope& poly) {
+  return 1e-9 * (1.0 + poly.radius + poly.center.norm());
 }
 
-/// Distance from point p to the segment a + s (b - a), s in [0, 1].
-double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + s * ab - p).norm();
+/// A real face of the polytope (placed by `frame_from_poly`) that `point` (frame)
+/// lies on within featureTolerance, or -1.
+int realFaceAt(const ConvexPolytope& poly, const Rigid& frame_from_poly, const Vec3& point) {
+  const Vec3 local = frame_from_poly.inverse() * point;
+  const double tolerance = featureTolerance(poly);
+  for (std::size_t f = 0; f < poly.faces.size() && f < poly.face_source.size(); ++f) {
+    if (poly.face_source[f] < 0) continue;
+    const Tri& t = poly.faces[f];
+    const Vec3 corners[3] = {poly.vertices[t[0]], poly.vertices[t[1]], poly.vertices[t[2]]};
+    if (pointTriangleDistance(local, corners) <= tolerance) return static_cast<int>(f);
+  }
+  return -1;
+}
+
+/// Seeds the feature search (features.h) of each side with the corners of the real
+/// face holding its closest point: GJK's vertices may be the far ends of a straight
+/// run of collinear vertices, which misses the short edge the point is on.
+void seedWithFaces(const Tri& t_face, const Tri& o_face, LeafContact& c) {
+  c.simplex_count = 3;
+  for (int k = 0; k < 3; ++k) {
+    c.simplex_t[k] = t_face[k];
+    c.simplex_o[k] = o_face[k];
+  }
+  c.simplex_t[3] = c.simplex_o[3] = -1;
 }
 
 Rigid translated(const Rigid& x, const Vec3& delta) { return {x.rotation, x.translation + delta}; }
 
+/// Heap order: the smallest bound on top.
+struct Farther {
+  template <class P>
+  bool operator()(const P& a, const P& b) const {
+    return a.bound > b.bound;
+  }
+};
+
 }  // namespace
 
-void collectLeaves(const GroupView& group, std::vector<Leaf>& out) {
+// ---------------------------------------------------------------------------
+// Binding
+
+void GroupPairQuery::collectSlots(const GroupView& group, std::vector<Slot>& out, int& leaf_count) {
   out.clear();
+  int leaves = 0, nodes = 0;
   for (int p = 0; p < group.part_count; ++p) {
     const Part& part = group.parts[p];
     if (part.model == nullptr) continue;
     const auto& pieces = part.model->pieces();
     for (int k = 0; k < static_cast<int>(pieces.size()); ++k) {
-      for (const ConvexPolytope& poly : pieces[k]->internals().patches) {
-        Leaf leaf;
-        leaf.poly = &poly;
-        leaf.group_from_leaf = part.group_from_model;
-        leaf.part = p;
-        leaf.piece = k;
-        leaf.center = part.group_from_model * poly.center;
-        leaf.radius = poly.radius;
-        out.push_back(leaf);
-      }
+      const PieceData& data = pieces[k]->internals();
+      if (data.patches.empty() || data.hierarchy.nodes.empty()) continue;
+      Slot slot;
+      slot.data = &data;
+      slot.group_from_piece = part.group_from_model;
+      slot.part = p;
+      slot.piece = k;
+      slot.first_leaf = leaves;
+      slot.first_node = nodes;
+      leaves += static_cast<int>(data.patches.size());
+      nodes += static_cast<int>(data.hierarchy.nodes.size());
+      out.push_back(slot);
     }
   }
+  leaf_count = leaves;
+}
+
+bool GroupPairQuery::sameSlots(const std::vector<Slot>& a, const std::vector<Slot>& b,
+                               bool& moved) {
+  moved = false;
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].data != b[i].data || a[i].part != b[i].part || a[i].piece != b[i].piece) return false;
+    moved = moved || a[i].group_from_piece.rotation != b[i].group_from_piece.rotation ||
+            a[i].group_from_piece.translation != b[i].group_from_piece.translation;
+  }
+  return true;
 }
 
 void GroupPairQuery::bind(const GroupView& target, const GroupView& opponent) {
-  const size_t old_t = t_leaves_.size(), old_o = o_leaves_.size();
-  const ConvexPolytope* first_t = old_t ? t_leaves_.front().poly : nullptr;
-  const ConvexPolytope* first_o = old_o ? o_leaves_.front().poly : nullptr;
-  collectLeaves(target, t_leaves_);
-  collectLeaves(opponent, o_leaves_);
-  // Warm starts are keyed by leaf index: drop them when the leaf lists change.
-  const bool same = t_leaves_.size() == old_t && o_leaves_.size() == old_o &&
-                    (old_t == 0 || t_leaves_.front().poly == first_t) &&
-                    (old_o == 0 || o_leaves_.front().poly == first_o);
-  if (!same) caches_.clear();
+  bool t_moved = false, o_moved = false;
+  int count = 0;
+  collectSlots(target, scratch_slots_, count);
+  const bool t_same = sameSlots(scratch_slots_, t_slots_, t_moved);
+  t_slots_.swap(scratch_slots_);
+  t_leaf_count_ = count;
+  collectSlots(opponent, scratch_slots_, count);
+  const bool o_same = sameSlots(scratch_slots_, o_slots_, o_moved);
+  o_slots_.swap(scratch_slots_);
+  o_leaf_count_ = count;
+  // Warm starts are keyed by node index: drop them when the pieces change.
+  if (!t_same || !o_same) {
+    caches_.clear();
+    seed_ = LeafPair();
+  }
+  if (!t_same || !o_same || t_moved || o_moved) known_ = false;
+  if (!t_same || t_moved) {
+    updateGroupSphere();
+    t_leaves_valid_ = false;
+  }
+  if (!o_same || o_moved) o_leaves_valid_ = false;
 }
 
-SimplexCache& GroupPairQuery::cacheFor(int t_leaf, int o_leaf) {
-  return caches_[pairKey(t_leaf, o_leaf)];
+namespace {
+
+template <class Slots, class LeafAt>
+void listLeaves(const Slots& slots, int count, LeafAt&& leaf_at, std::vector<Leaf>& out) {
+  out.clear();
+  if (slots.empty()) return;
+  out.reserve(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) out.push_back(leaf_at(i));
 }
 
-LeafContact GroupPairQuery::evaluate(int t_leaf, int o_leaf, const Rigid& o_from_t,
-                                     double max_distance, bool& beyond) {
-  const Leaf& lt = t_leaves_[t_leaf];
-  const Leaf& lo = o_leaves_[o_leaf];
+}  // namespace
+
+const std::vector<Leaf>& GroupPairQuery::targetLeaves() const {
+  if (!t_leaves_valid_) {
+    listLeaves(
+        t_slots_, t_leaf_count_, [this](int i) { return targetLeaf(i); }, t_leaves_);
+    t_leaves_valid_ = true;
+  }
+  return t_leaves_;
+}
+
+const std::vector<Leaf>& GroupPairQuery::opponentLeaves() const {
+  if (!o_leaves_valid_) {
+    listLeaves(
+        o_slots_, o_leaf_count_, [this](int i) { return opponentLeaf(i); }, o_leaves_);
+    o_leaves_valid_ = true;
+  }
+  return o_leaves_;
+}
+
+void GroupPairQuery::updateGroupSphere() {
+  // A sphere around the pieces' root spheres: centre at their box's centre.
+  Aabb box;
+  for (const Slot& s : t_slots_) {
+    const HullBvhNode& root = s.data->hierarchy.nodes[0];
+    const Vec3 c = s.group_from_piece * root.center;
+    box.extend(Aabb{c - Vec3::Constant(root.radius), c + Vec3::Constant(root.radius)});
+  }
+  t_center_ = box.empty() ? Vec3::Zero() : Vec3(0.5 * (box.min + box.max));
+  t_radius_ = 0.0;
+  for (const Slot& s : t_slots_) {
+    const HullBvhNode& root = s.data->hierarchy.nodes[0];
+    t_radius_ =
+        std::max(t_radius_, (s.group_from_piece * root.center - t_center_).norm() + root.radius);
+  }
+}
+
+int GroupPairQuery::slotOf(const std::vector<Slot>& slots, int leaf) {
+  const auto it = std::upper_bound(slots.begin(), slots.end(), leaf,
+                                   [](int l, const Slot& s) { return l < s.first_leaf; });
+  return static_cast<int>(it - slots.begin()) - 1;
+}
+
+Leaf GroupPairQuery::leafOf(const std::vector<Slot>& slots, int leaf) {
+  const Slot& slot = slots[slotOf(slots, leaf)];
+  Leaf out;
+  out.poly = &slot.data->patches[leaf - slot.first_leaf];
+  out.group_from_leaf = slot.group_from_piece;
+  out.part = slot.part;
+  out.piece = slot.piece;
+  out.center = slot.group_from_piece * out.poly->center;
+  out.radius = out.poly->radius;
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// Node pairs
+
+SimplexCache& GroupPairQuery::cacheOf(const NodePair& p) {
+  const auto t = static_cast<std::uint32_t>(t_slots_[p.t_slot].first_node + p.t_node);
+  const auto o = static_cast<std::uint32_t>(o_slots_[p.o_slot].first_node + p.o_node);
+  return caches_.at(static_cast<std::uint64_t>(t) << 32 | o);
+}
+
+void GroupPairQuery::placeTargets(const Rigid& o_from_t) {
+  o_from_piece_.resize(t_slots_.size());
+  for (std::size_t i = 0; i < t_slots_.size(); ++i)
+    o_from_piece_[i] = o_from_t * t_slots_[i].group_from_piece;
+}
+
+double GroupPairQuery::sphereBound(const NodePair& p) const {
+  const HullBvhNode& t = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
+  const Slot& os = o_slots_[p.o_slot];
+  const HullBvhNode& o = os.data->hierarchy.nodes[p.o_node];
+  const Vec3 tc = o_from_piece_[p.t_slot] * t.center;
+  const Vec3 oc = os.group_from_piece * o.center;
+  return (tc - oc).norm() - t.radius - o.radius;
+}
+
+double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance) {
+  ++counters_.node_gjk;
+  const Slot& ts = t_slots_[p.t_slot];
+  const Slot& os = o_slots_[p.o_slot];
   GjkSettings settings;
   settings.max_distance = max_distance;
-  const GjkResult r = gjkDistance(*lt.poly, o_from_t * lt.group_from_leaf, *lo.poly,
-                                  lo.group_from_leaf, settings, cacheFor(t_leaf, o_leaf));
+  const GjkResult r =
+      gjkDistance(polytopeOf(ts, p.t_node), o_from_piece_[p.t_slot], polytopeOf(os, p.o_node),
+                  os.group_from_piece, settings, cacheOf(p));
+  return r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound;
+}
+
+LeafContact GroupPairQuery::evaluate(const NodePair& p, const Rigid& o_from_piece,
+                                     double max_distance, bool& beyond) {
+  ++counters_.leaf_gjk;
+  const Slot& ts = t_slots_[p.t_slot];
+  const Slot& os = o_slots_[p.o_slot];
+  const HullBvhNode& tn = ts.data->hierarchy.nodes[p.t_node];
+  const HullBvhNode& on = os.data->hierarchy.nodes[p.o_node];
+  GjkSettings settings;
+  settings.max_distance = max_distance;
+  const GjkResult r =
+      gjkDistance(ts.data->patches[tn.polytope], o_from_piece, os.data->patches[on.polytope],
+                  os.group_from_piece, settings, cacheOf(p));
   LeafContact c;
-  c.t_leaf = t_leaf;
-  c.o_leaf = o_leaf;
+  c.t_leaf = ts.first_leaf + tn.polytope;
+  c.o_leaf = os.first_leaf + on.polytope;
   beyond = r.status == GjkStatus::BeyondMaxDistance;
   c.intersecting = r.status == GjkStatus::Intersecting;
   c.gap = c.intersecting ? 0.0 : (beyond ? r.lower_bound : r.distance);
@@ -92,102 +267,331 @@ LeafContact GroupPairQuery::evaluate(int t_leaf, int o_leaf, const Rigid& o_from
   return c;
 }
 
-void GroupPairQuery::gatherCandidates(const Rigid& o_from_t, double max_gap) {
-  candidates_.clear();
-  for (int i = 0; i < static_cast<int>(t_leaves_.size()); ++i) {
-    const Vec3 c = o_from_t * t_leaves_[i].center;
-    for (int j = 0; j < static_cast<int>(o_leaves_.size()); ++j) {
-      const Leaf& lo = o_leaves_[j];
-      const double lb = (c - lo.center).norm() - t_leaves_[i].radius - lo.radius;
-      if (lb <= max_gap) candidates_.push_back({std::max(lb, 0.0), i, j});
-    }
-  }
-  std::sort(candidates_.begin(), candidates_.end(),
-            [](const Candidate& a, const Candidate& b) { return a.lower_bound < b.lower_bound; });
+GroupPairQuery::NodePair GroupPairQuery::leafPair(int t_leaf, int o_leaf) const {
+  NodePair p;
+  p.t_slot = slotOf(t_slots_, t_leaf);
+  p.o_slot = slotOf(o_slots_, o_leaf);
+  const Slot& ts = t_slots_[p.t_slot];
+  const Slot& os = o_slots_[p.o_slot];
+  p.t_node = ts.data->hierarchy.leaf_node[t_leaf - ts.first_leaf];
+  p.o_node = os.data->hierarchy.leaf_node[o_leaf - os.first_leaf];
+  return p;
 }
 
-bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafContact& best) {
-  gatherCandidates(o_from_t, max_distance);
-  bool found = false;
-  double bound = max_distance;
-  for (const Candidate& cand : candidates_) {
-    if (found && cand.lower_bound >= best.gap) break;
-    if (cand.lower_bound > bound) break;
-    bool beyond = false;
-    const LeafContact c = evaluate(cand.t_leaf, cand.o_leaf, o_from_t, bound, beyond);
-    if (beyond) continue;
-    if (!found || c.gap < best.gap) {
-      best = c;
-      found = true;
-      bound = std::min(bound, c.gap);
-      if (c.intersecting) break;
+namespace {
+
+/// The real faces of `poly` in the frame `frame_from_poly` places it in.
+template <class Face>
+void placeRealFaces(const ConvexPolytope& poly, const Rigid& frame_from_poly,
+                    std::vector<Face>& out) {
+  out.clear();
+  for (std::size_t f = 0; f < poly.faces.size(); ++f) {
+    if (f >= poly.face_source.size() || poly.face_source[f] < 0) continue;
+    Face face;
+    for (int k = 0; k < 3; ++k) face.corners[k] = frame_from_poly * poly.vertices[poly.faces[f][k]];
+    face.center = (face.corners[0] + face.corners[1] + face.corners[2]) / 3.0;
+    for (const Vec3& v : face.corners)
+      face.radius = std::max(face.radius, (v - face.center).norm());
+    face.face = static_cast<int>(f);
+    out.push_back(face);
+  }
+}
+
+}  // namespace
+
+bool GroupPairQuery::refine(const NodePair& p, const Rigid& o_from_piece, double bound,
+                            LeafContact& c) {
+  ++counters_.refined;
+  const Slot& ts = t_slots_[p.t_slot];
+  const Slot& os = o_slots_[p.o_slot];
+  const ConvexPolytope& pt = polytopeOf(ts, p.t_node);
+  const ConvexPolytope& po = polytopeOf(os, p.o_node);
+  placeRealFaces(pt, o_from_piece, faces_t_);
+  placeRealFaces(po, os.group_from_piece, faces_o_);
+  double best = bound;
+  int best_t = -1, best_o = -1;
+  TriangleDistance best_d;
+  for (int i = 0; i < static_cast<int>(faces_t_.size()); ++i) {
+    const PlacedFace& ft = faces_t_[i];
+    for (int j = 0; j < static_cast<int>(faces_o_.size()); ++j) {
+      const PlacedFace& fo = faces_o_[j];
+      if ((ft.center - fo.center).norm() - ft.radius - fo.radius >= best) continue;
+      const TriangleDistance d = triangleDistance(ft.corners, fo.corners);
+      if (d.distance < best) {
+        best = d.distance;
+        best_d = d;
+        best_t = i;
+        best_o = j;
+      }
     }
   }
-  return found;
+  if (best_t < 0) return false;
+  c.gap = best_d.distance;
+  c.point_t = best_d.point_a;
+  c.point_o = best_d.point_b;
+  c.normal = normalizedOr(best_d.point_a - best_d.point_b, c.normal);
+  seedWithFaces(pt.faces[faces_t_[best_t].face], po.faces[faces_o_[best_o].face], c);
+  return true;
 }
+
+LeafContact GroupPairQuery::exactLeafDistance(const NodePair& p, double bound, bool& beyond) {
+  const Rigid& o_from_piece = o_from_piece_[p.t_slot];
+  LeafContact c = evaluate(p, o_from_piece, bound, beyond);
+  if (beyond || c.intersecting || c.gap >= bound) return c;
+  const Slot& os = o_slots_[p.o_slot];
+  const ConvexPolytope& pt = polytopeOf(t_slots_[p.t_slot], p.t_node);
+  const ConvexPolytope& po = polytopeOf(os, p.o_node);
+  const int t_face = realFaceAt(pt, o_from_piece, c.point_t);
+  const int o_face = t_face < 0 ? -1 : realFaceAt(po, os.group_from_piece, c.point_o);
+  if (o_face >= 0) {
+    seedWithFaces(pt.faces[t_face], po.faces[o_face], c);
+    return c;
+  }
+  // A point off the surface (on a virtual feature): the real triangles decide, and
+  // they can only be farther (they lie in the hull).
+  beyond = !refine(p, o_from_piece, bound, c);
+  return c;
+}
+
+// A policy says which bounds are pruned (`prunes`, monotone in the bound), how far
+// GJK on a node pair needs to look (`reach`), may veto a child pair (`admits`),
+// and takes leaf pairs (`visit`, false to stop).
+template <class Policy>
+void GroupPairQuery::traverse(Policy& policy) {
+  heap_.clear();
+  for (int ts = 0; ts < static_cast<int>(t_slots_.size()); ++ts) {
+    for (int os = 0; os < static_cast<int>(o_slots_.size()); ++os) {
+      NodePair root;
+      root.t_slot = ts;
+      root.o_slot = os;
+      root.bound = std::max(0.0, sphereBound(root));
+      if (policy.prunes(root.bound) || !policy.admits(root)) continue;
+      heap_.push_back(root);
+      std::push_heap(heap_.begin(), heap_.end(), Farther());
+    }
+  }
+  while (!heap_.empty()) {
+    std::pop_heap(heap_.begin(), heap_.end(), Farther());
+    NodePair p = heap_.back();
+    heap_.pop_back();
+    if (policy.prunes(p.bound)) break;  // every pair left is at least as far
+    ++counters_.node_pairs;
+    const HullBvhNode& tn = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
+    const HullBvhNode& on = o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node];
+    if (tn.leaf() && on.leaf()) {
+      if (!policy.visit(p)) return;
+      continue;
+    }
+    if (!p.refined) {
+      p.bound = std::max(p.bound, nodeLowerBound(p, policy.reach()));
+      p.refined = true;
+      if (policy.prunes(p.bound)) continue;
+      if (!heap_.empty() && p.bound > heap_.front().bound) {
+        heap_.push_back(p);
+        std::push_heap(heap_.begin(), heap_.end(), Farther());
+        continue;
+      }
+    }
+    const bool split_t = on.leaf() || (!tn.leaf() && tn.radius >= on.radius);
+    const HullBvhNode& split = split_t ? tn : on;
+    for (const int child : {split.left, split.right}) {
+      NodePair c = p;
+      (split_t ? c.t_node : c.o_node) = child;
+      c.refined = false;
+      c.bound = std::max(p.bound, sphereBound(c));
+      if (policy.prunes(c.bound) || !policy.admits(c)) continue;
+      heap_.push_back(c);
+      std::push_heap(heap_.begin(), heap_.end(), Farther());
+    }
+  }
+}
+
+double GroupPairQuery::knownLowerBound(const Rigid& o_from_t) const {
+  if (!known_) return -kInfinity;
+  // A target point p = c + q (|q| <= radius) moves by at most
+  // |(X - K) c| + ||R_X - R_K|| radius; the Frobenius norm bounds the spectral one.
+  const double centre_shift = (o_from_t * t_center_ - known_pose_ * t_center_).norm();
+  const double spin = (o_from_t.rotation - known_pose_.rotation).norm();
+  return known_gap_ - centre_shift - spin * t_radius_;
+}
+
+// ---------------------------------------------------------------------------
+// Distance
+
+struct GroupPairQuery::DistancePolicy {
+  GroupPairQuery& q;
+  double max_distance;
+  LeafContact& best;
+  bool found = false;
+
+  bool prunes(double bound) const { return found ? bound >= best.gap : bound > max_distance; }
+  double reach() const { return found ? best.gap : max_distance; }
+  bool admits(const NodePair&) const { return true; }
+  void offer(const LeafContact& c) {
+    if (found && c.gap >= best.gap) return;
+    best = c;
+    found = true;
+  }
+  bool visit(const NodePair& p) {
+    const Slot& ts = q.t_slots_[p.t_slot];
+    const Slot& os = q.o_slots_[p.o_slot];
+    const int t_leaf = ts.first_leaf + ts.data->hierarchy.nodes[p.t_node].polytope;
+    const int o_leaf = os.first_leaf + os.data->hierarchy.nodes[p.o_node].polytope;
+    if (t_leaf == q.seed_.t_leaf && o_leaf == q.seed_.o_leaf) return true;  // done first
+    bool beyond = false;
+    const LeafContact c = q.exactLeafDistance(p, reach(), beyond);
+    if (!beyond) offer(c);
+    return !(found && best.intersecting);
+  }
+};
+
+bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafContact& best) {
+  counters_ = TraversalCounters();
+  placeTargets(o_from_t);
+  DistancePolicy policy{*this, max_distance, best};
+  if (seed_.t_leaf >= 0 && seed_.t_leaf < t_leaf_count_ && seed_.o_leaf < o_leaf_count_) {
+    bool beyond = false;
+    const LeafContact c =
+        exactLeafDistance(leafPair(seed_.t_leaf, seed_.o_leaf), max_distance, beyond);
+    if (!beyond) policy.offer(c);
+  }
+  if (!(policy.found && best.intersecting)) traverse(policy);
+  if (policy.found) seed_ = {best.t_leaf, best.o_leaf};
+  known_ = true;
+  known_pose_ = o_from_t;
+  known_gap_ = (policy.found ? best.gap : max_distance) * (1.0 - kKnownGapMargin);
+  return policy.found;
+}
+
+// ---------------------------------------------------------------------------
+// Contacts and intersection
+
+struct GroupPairQuery::ContactsPolicy {
+  GroupPairQuery& q;
+  double threshold;
+  std::vector<LeafContact>& out;
+
+  bool prunes(double bound) const { return bound > threshold; }
+  double reach() const { return threshold; }
+  bool admits(const NodePair&) const { return true; }
+  bool visit(const NodePair& p) {
+    bool beyond = false;
+    const LeafContact c = q.evaluate(p, q.o_from_piece_[p.t_slot], threshold, beyond);
+    if (!beyond && c.gap <= threshold) out.push_back(c);
+    return true;
+  }
+};
 
 void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
                               std::vector<LeafContact>& out) {
   out.clear();
-  gatherCandidates(o_from_t, threshold);
-  for (const Candidate& cand : candidates_) {
-    bool beyond = false;
-    const LeafContact c = evaluate(cand.t_leaf, cand.o_leaf, o_from_t, threshold, beyond);
-    if (!beyond && c.gap <= threshold) out.push_back(c);
+  counters_ = TraversalCounters();
+  if (knownLowerBound(o_from_t) > threshold) {
+    counters_.shortcut = true;
+    return;
   }
+  placeTargets(o_from_t);
+  ContactsPolicy policy{*this, threshold, out};
+  traverse(policy);
+  std::sort(out.begin(), out.end(), [](const LeafContact& a, const LeafContact& b) {
+    if (a.gap != b.gap) return a.gap < b.gap;
+    return LeafPair{a.t_leaf, a.o_leaf} < LeafPair{b.t_leaf, b.o_leaf};
+  });
+}
+
+struct GroupPairQuery::IntersectPolicy {
+  GroupPairQuery& q;
+  bool hit = false;
+
+  bool prunes(double bound) const { return bound > 0.0; }
+  double reach() const { return 0.0; }
+  bool admits(const NodePair&) const { return true; }
+  bool visit(const NodePair& p) {
+    bool beyond = false;
+    hit = q.evaluate(p, q.o_from_piece_[p.t_slot], 0.0, beyond).intersecting;
+    return !hit;
+  }
+};
+
+bool GroupPairQuery::intersects(const Rigid& o_from_t) {
+  counters_ = TraversalCounters();
+  if (knownLowerBound(o_from_t) > 0.0) {
+    counters_.shortcut = true;
+    return false;
+  }
+  placeTargets(o_from_t);
+  IntersectPolicy policy{*this};
+  traverse(policy);
+  return policy.hit;
 }
 
 LeafContact GroupPairQuery::pairAt(int t_leaf, int o_leaf, const Rigid& o_from_t) {
+  const NodePair p = leafPair(t_leaf, o_leaf);
   bool beyond = false;
-  return evaluate(t_leaf, o_leaf, o_from_t, kInfinity, beyond);
-}
-
-bool GroupPairQuery::intersects(const Rigid& o_from_t) {
-  gatherCandidates(o_from_t, 0.0);
-  for (const Candidate& cand : candidates_) {
-    bool beyond = false;
-    if (evaluate(cand.t_leaf, cand.o_leaf, o_from_t, 0.0, beyond).intersecting) return true;
-  }
-  return false;
+  return evaluate(p, o_from_t * t_slots_[p.t_slot].group_from_piece, kInfinity, beyond);
 }
 
 double GroupPairQuery::separationAlong(int t_leaf, int o_leaf, const Rigid& o_from_t,
                                        const Vec3& n) {
-  const Leaf& lt = t_leaves_[t_leaf];
-  const Leaf& lo = o_leaves_[o_leaf];
-  const Rigid o_from_lt = o_from_t * lt.group_from_leaf;
-  SimplexCache& cache = cacheFor(t_leaf, o_leaf);
+  const NodePair p = leafPair(t_leaf, o_leaf);
+  const Slot& ts = t_slots_[p.t_slot];
+  const Slot& os = o_slots_[p.o_slot];
+  const ConvexPolytope& pt = polytopeOf(ts, p.t_node);
+  const ConvexPolytope& po = polytopeOf(os, p.o_node);
+  const Rigid o_from_lt = o_from_t * ts.group_from_piece;
+  SimplexCache& cache = cacheOf(p);
   // Directions in each leaf's own frame.
   const Vec3 nt = o_from_lt.rotation.transpose() * n;
-  const Vec3 no = lo.group_from_leaf.rotation.transpose() * n;
-  const int it = lt.poly->support(-nt, cache.hint_a);
-  const int io = lo.poly->support(no, cache.hint_b);
-  const double min_t = n.dot(o_from_lt * lt.poly->vertices[it]);
-  const double max_o = n.dot(lo.group_from_leaf * lo.poly->vertices[io]);
+  const Vec3 no = os.group_from_piece.rotation.transpose() * n;
+  const int it = pt.support(-nt, cache.hint_a);
+  const int io = po.support(no, cache.hint_b);
+  const double min_t = n.dot(o_from_lt * pt.vertices[it]);
+  const double max_o = n.dot(os.group_from_piece * po.vertices[io]);
   return min_t - max_o;
 }
 
-double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, double stop_gap,
-                                      const std::vector<std::uint8_t>& skip) {
-  const double reach = delta.norm();
-  gatherCandidates(o_from_t, reach + stop_gap);
-  const size_t no = o_leaves_.size();
+// ---------------------------------------------------------------------------
+// Time of impact along a translation
+
+struct GroupPairQuery::ToiPolicy {
+  GroupPairQuery& q;
+  const Vec3& delta;
+  double reach_length;  ///< |delta|
+  double stop_gap;
+  const std::vector<LeafPair>& skip;
   double limit = 1.0;
-  for (const Candidate& cand : candidates_) {
-    if (!skip.empty() && skip[cand.t_leaf * no + cand.o_leaf]) continue;
-    const Leaf& lt = t_leaves_[cand.t_leaf];
-    const Leaf& lo = o_leaves_[cand.o_leaf];
-    const Vec3 c0 = o_from_t * lt.center;
-    const double swept_lb =
-        pointSegmentDistance(lo.center, c0, c0 + limit * delta) - lt.radius - lo.radius;
-    if (swept_lb > 0.5 * stop_gap) continue;
+
+  // The pair's gap shrinks by at most limit * |delta| along the way; a pair that
+  // starts within stop_gap would block at once.
+  bool prunes(double bound) const {
+    return bound > stop_gap && bound - limit * reach_length > 0.5 * stop_gap;
+  }
+  double reach() const { return limit * reach_length + 0.5 * stop_gap; }
+  bool admits(const NodePair& p) const {
+    // Swept bounding spheres: the target sphere's centre runs along a segment.
+    const HullBvhNode& t = q.t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
+    const Slot& os = q.o_slots_[p.o_slot];
+    const HullBvhNode& o = os.data->hierarchy.nodes[p.o_node];
+    const Vec3 c0 = q.o_from_piece_[p.t_slot] * t.center;
+    const double swept =
+        pointSegmentDistance(os.group_from_piece * o.center, c0, c0 + limit * delta) - t.radius -
+        o.radius;
+    return swept <= 0.5 * stop_gap;
+  }
+  bool visit(const NodePair& p) {
+    const Slot& ts = q.t_slots_[p.t_slot];
+    const Slot& os = q.o_slots_[p.o_slot];
+    const LeafPair leaves{ts.first_leaf + ts.data->hierarchy.nodes[p.t_node].polytope,
+                          os.first_leaf + os.data->hierarchy.nodes[p.o_node].polytope};
+    if (std::binary_search(skip.begin(), skip.end(), leaves)) return true;
+    if (!admits(p)) return true;
     // Conservative advancement: the separating plane of the current closest points
     // stays separating while the target moves towards it by less than the gap.
+    const Rigid& start = q.o_from_piece_[p.t_slot];
     double s = 0.0;
     for (int step = 0; step < kMaxAdvanceSteps && s < limit; ++step) {
       bool beyond = false;
-      const LeafContact c =
-          evaluate(cand.t_leaf, cand.o_leaf, translated(o_from_t, s * delta), kInfinity, beyond);
+      const LeafContact c = q.evaluate(p, translated(start, s * delta), kInfinity, beyond);
       if (c.intersecting || c.gap <= stop_gap) break;
       const double rate = -c.normal.dot(delta);
       if (rate <= 0.0) {
@@ -197,8 +601,23 @@ double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, 
       s = std::min(limit, s + (c.gap - 0.5 * stop_gap) / rate);
     }
     limit = std::min(limit, s);
+    return limit > 0.0;
   }
-  return limit;
+};
+
+double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, double stop_gap,
+                                      const std::vector<LeafPair>& skip) {
+  counters_ = TraversalCounters();
+  const double reach_length = delta.norm();
+  const double known = knownLowerBound(o_from_t);
+  if (known > stop_gap && known - reach_length > 0.5 * stop_gap) {
+    counters_.shortcut = true;
+    return 1.0;
+  }
+  placeTargets(o_from_t);
+  ToiPolicy policy{*this, delta, reach_length, stop_gap, skip};
+  traverse(policy);
+  return policy.limit;
 }
 
 }  // namespace sc::detail

@@ -2,15 +2,17 @@
 // Queries between two groups of convex leaves (convex pieces, patch hulls, soup
 // triangles): minimum distance, contacts within a gap, intersection, and time of
 // impact along a translation. Runs in the opponent group's frame with the target
-// placed by `o_from_t`. Candidate leaf pairs are culled by bounding spheres and
-// visited nearest first; per-pair GJK warm starts persist across calls.
+// placed by `o_from_t`. Each query is a best-first traversal of the pieces' hull
+// hierarchies (preprocess/hull_bvh.h) with GJK lower bounds on node pairs; warm
+// starts per node pair and the last closest leaf pair persist across calls.
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
+#include "preprocess/piece_data.h"
 #include "query/gjk.h"
+#include "query/pair_cache.h"
 #include "smartcollision/collision.h"
 
 namespace sc::detail {
@@ -19,22 +21,30 @@ namespace sc::detail {
 struct Leaf {
   const ConvexPolytope* poly = nullptr;
   Rigid group_from_leaf;
-  int part = -1;   ///< index into GroupView::parts
-  int piece = -1;  ///< piece index within the part's model
+  int part = -1;               ///< index into GroupView::parts
+  int piece = -1;              ///< piece index within the part's model
   Vec3 center = Vec3::Zero();  ///< bounding sphere in the group frame
   double radius = 0.0;
 };
 
-/// Collects the leaves of a group into `out` (cleared first, capacity kept).
-void collectLeaves(const GroupView& group, std::vector<Leaf>& out);
+/// A target leaf and an opponent leaf, by their indices in the query's leaf lists.
+struct LeafPair {
+  int t_leaf = -1;
+  int o_leaf = -1;
+
+  bool operator<(const LeafPair& o) const {
+    return t_leaf != o.t_leaf ? t_leaf < o.t_leaf : o_leaf < o.o_leaf;
+  }
+  bool operator==(const LeafPair& o) const { return t_leaf == o.t_leaf && o_leaf == o.o_leaf; }
+};
 
 /// One leaf pair's closest points or contact, in the opponent group's frame.
 struct LeafContact {
   int t_leaf = -1;
   int o_leaf = -1;
   bool intersecting = false;
-  double gap = 0.0;                 ///< GJK distance; 0 when intersecting
-  Vec3 normal = Vec3::UnitX();      ///< unit, from the opponent leaf towards the target leaf
+  double gap = 0.0;             ///< GJK distance; 0 when intersecting
+  Vec3 normal = Vec3::UnitX();  ///< unit, from the opponent leaf towards the target leaf
   Vec3 point_t = Vec3::Zero();
   Vec3 point_o = Vec3::Zero();
   int simplex_count = 0;
@@ -42,20 +52,44 @@ struct LeafContact {
   int simplex_o[4] = {-1, -1, -1, -1};
 };
 
+/// Work done by the last traversal (for tests and benchmarks).
+struct TraversalCounters {
+  int node_pairs = 0;     ///< node pairs taken from the queue
+  int node_gjk = 0;       ///< GJK runs on inner node pairs (lower bounds)
+  int leaf_gjk = 0;       ///< GJK runs on leaf pairs
+  int refined = 0;        ///< leaf pairs measured on their real triangles
+  bool shortcut = false;  ///< answered from the last distance without traversal
+};
+
+/// Per directed group pair; not thread-safe (one per pair and direction).
+/// Leaves are numbered per group: the pieces of the parts in order, each piece's
+/// leaves (PieceData::patches) in order.
 class GroupPairQuery {
  public:
-  /// Binds the two groups (target, opponent); resets caches if the leaf sets change.
+  /// Binds the two groups (target, opponent); resets the warm starts when the
+  /// pieces change, and the remembered distance when any placement in a group does.
+  /// Allocates only when the groups have more pieces than ever before.
   void bind(const GroupView& target, const GroupView& opponent);
 
-  const std::vector<Leaf>& targetLeaves() const { return t_leaves_; }
-  const std::vector<Leaf>& opponentLeaves() const { return o_leaves_; }
+  int targetLeafCount() const { return t_leaf_count_; }
+  int opponentLeafCount() const { return o_leaf_count_; }
+  Leaf targetLeaf(int t_leaf) const { return leafOf(t_slots_, t_leaf); }
+  Leaf opponentLeaf(int o_leaf) const { return leafOf(o_slots_, o_leaf); }
+  /// Every leaf as a list: built on first use after the groups change, O(leaves)
+  /// time and memory (prefer targetLeaf / targetLeafCount on large models).
+  const std::vector<Leaf>& targetLeaves() const;
+  const std::vector<Leaf>& opponentLeaves() const;
 
   /// Minimum distance over all leaf pairs. False when every pair is farther than
   /// `max_distance` (then `best` is unset). An intersecting pair gives gap 0.
+  /// Exact surface distance: a leaf pair whose GJK closest points lie on real faces
+  /// is final; otherwise (a virtual feature: the patch's hull may reach out of the
+  /// solid by the decomposition's tolerance) it is measured on its real triangles.
+  /// Seeded with the last call's closest pair.
   bool distance(const Rigid& o_from_t, double max_distance, LeafContact& best);
 
   /// Every leaf pair with gap <= `threshold` (intersecting ones included), appended
-  /// to `out` after clearing it.
+  /// to `out` after clearing it, nearest first (ties by leaf indices).
   void contacts(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
 
   /// Closest points of one leaf pair (GJK with its warm start).
@@ -70,27 +104,93 @@ class GroupPairQuery {
   double separationAlong(int t_leaf, int o_leaf, const Rigid& o_from_t, const Vec3& n);
 
   /// Largest s in [0, 1] such that translating the target by s * delta (opponent frame)
-  /// from `o_from_t` keeps every leaf pair not flagged in `skip` at gap >= stop_gap/2,
+  /// from `o_from_t` keeps every leaf pair not listed in `skip` at gap >= stop_gap/2,
   /// ending at gap <= stop_gap when a pair blocks. Conservative advancement per pair.
-  /// `skip` is indexed t_leaf * opponentLeaves().size() + o_leaf; empty = skip none.
+  /// `skip` is sorted (LeafPair::operator<).
   double translationToi(const Rigid& o_from_t, const Vec3& delta, double stop_gap,
-                        const std::vector<std::uint8_t>& skip);
+                        const std::vector<LeafPair>& skip);
+
+  const TraversalCounters& counters() const { return counters_; }
 
  private:
-  struct Candidate {
-    double lower_bound;
-    int t_leaf;
-    int o_leaf;
+  /// One piece of a part of a group, with its leaf and node index ranges.
+  struct Slot {
+    const PieceData* data = nullptr;
+    Rigid group_from_piece;
+    int part = -1;
+    int piece = -1;
+    int first_leaf = 0;
+    int first_node = 0;
   };
-  LeafContact evaluate(int t_leaf, int o_leaf, const Rigid& o_from_t, double max_distance,
-                       bool& beyond);
-  void gatherCandidates(const Rigid& o_from_t, double max_gap);
-  SimplexCache& cacheFor(int t_leaf, int o_leaf);
+  /// A real face of a leaf, placed in the opponent frame, with its bounding sphere.
+  struct PlacedFace {
+    Vec3 corners[3];
+    Vec3 center;
+    double radius = 0.0;
+    int face = -1;  ///< index into the leaf's faces
+  };
+  /// A node of each side and a lower bound of their distance.
+  struct NodePair {
+    double bound = 0.0;
+    int t_slot = 0;
+    int t_node = 0;
+    int o_slot = 0;
+    int o_node = 0;
+    bool refined = false;  ///< bound from GJK on the pair's own polytopes
+  };
+  struct DistancePolicy;
+  struct ContactsPolicy;
+  struct IntersectPolicy;
+  struct ToiPolicy;
 
-  std::vector<Leaf> t_leaves_;
-  std::vector<Leaf> o_leaves_;
-  std::vector<Candidate> candidates_;
-  std::unordered_map<std::uint64_t, SimplexCache> caches_;
+  static void collectSlots(const GroupView& group, std::vector<Slot>& out, int& leaf_count);
+  static int slotOf(const std::vector<Slot>& slots, int leaf);
+  static Leaf leafOf(const std::vector<Slot>& slots, int leaf);
+  static bool sameSlots(const std::vector<Slot>& a, const std::vector<Slot>& b, bool& moved);
+  void updateGroupSphere();
+
+  const ConvexPolytope& polytopeOf(const Slot& slot, int node) const {
+    return slot.data->hierarchy.polytope(slot.data->patches, node);
+  }
+  SimplexCache& cacheOf(const NodePair& p);
+  /// Places every target piece in the opponent frame for this query.
+  void placeTargets(const Rigid& o_from_t);
+  double sphereBound(const NodePair& p) const;
+  double nodeLowerBound(const NodePair& p, double max_distance);
+  /// GJK on a leaf pair, the target piece placed by `o_from_piece`.
+  LeafContact evaluate(const NodePair& p, const Rigid& o_from_piece, double max_distance,
+                       bool& beyond);
+  NodePair leafPair(int t_leaf, int o_leaf) const;
+  /// Replaces `c` by the closest points of the two leaves' real triangles when
+  /// nearer than `bound`; false (c unchanged) when no triangle pair is.
+  bool refine(const NodePair& p, const Rigid& o_from_piece, double bound, LeafContact& c);
+  /// GJK on a leaf pair for distance(): refined when its closest feature is virtual
+  /// and it could beat `bound`. `beyond` when it cannot.
+  LeafContact exactLeafDistance(const NodePair& p, double bound, bool& beyond);
+  template <class Policy>
+  void traverse(Policy& policy);
+  /// Lower bound of the distance at `o_from_t` from the last distance(), or -inf.
+  double knownLowerBound(const Rigid& o_from_t) const;
+
+  std::vector<Slot> t_slots_, o_slots_, scratch_slots_;
+  int t_leaf_count_ = 0;
+  int o_leaf_count_ = 0;
+  std::vector<Rigid> o_from_piece_;  ///< per target slot, for the current query
+  std::vector<NodePair> heap_;
+  std::vector<PlacedFace> faces_t_, faces_o_;  ///< refine()'s scratch
+  PairCache caches_;
+  LeafPair seed_;  ///< closest leaf pair of the last distance(), or -1s
+  /// The last distance(): every leaf pair was at least known_gap_ apart at known_pose_.
+  bool known_ = false;
+  Rigid known_pose_;
+  double known_gap_ = 0.0;
+  Vec3 t_center_ = Vec3::Zero();  ///< sphere holding the target group (its frame)
+  double t_radius_ = 0.0;
+  TraversalCounters counters_;
+  // Lazily built leaf lists (targetLeaves / opponentLeaves); a cache, not state.
+  mutable std::vector<Leaf> t_leaves_, o_leaves_;
+  mutable bool t_leaves_valid_ = false;
+  mutable bool o_leaves_valid_ = false;
 };
 
 }  // namespace sc::detail

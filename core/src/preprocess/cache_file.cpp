@@ -1,0 +1,297 @@
+// SPDX-License-Identifier: MIT
+// Piece cache file: encode, decode with every count and index checked, and atomic
+// write. Adjacency, bounds and bounding spheres are not stored: finalize() and
+// finishHullBvh() recompute them on load, so a file cannot make them inconsistent.
+#include "preprocess/cache_file.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <type_traits>
+#include <utility>
+
+namespace sc::detail {
+namespace {
+
+constexpr char kMagic[8] = {'S', 'C', 'P', 'I', 'E', 'C', 'E', '\0'};
+constexpr std::uint32_t kEndianMarker = 0x01020304u;
+constexpr std::size_t kHeaderSize = 8 + 4 + 4 + 4 + 4 + 8 + 8 + 8;
+// Per stored vertex: x, y, z, original; per face: three indices and the source.
+constexpr std::size_t kVertexBytes = 3 * sizeof(double) + sizeof(std::int32_t);
+constexpr std::size_t kFaceBytes = 4 * sizeof(std::int32_t);
+constexpr std::size_t kNodeBytes = 3 * sizeof(std::int32_t);
+
+class Writer {
+ public:
+  explicit Writer(std::vector<std::uint8_t>& out) : out_(out) {}
+  template <class T>
+  void put(T value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const std::size_t at = out_.size();
+    out_.resize(at + sizeof(T));
+    std::memcpy(out_.data() + at, &value, sizeof(T));
+  }
+  void putCount(std::size_t n) { put(static_cast<std::uint64_t>(n)); }
+  void putPolytope(const ConvexPolytope& p) {
+    putCount(p.vertices.size());
+    for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+      for (int k = 0; k < 3; ++k) put(p.vertices[i][k]);
+      put(static_cast<std::int32_t>(i < p.original.size() ? p.original[i] : -1));
+    }
+    putCount(p.faces.size());
+    for (std::size_t f = 0; f < p.faces.size(); ++f) {
+      for (int k = 0; k < 3; ++k) put(static_cast<std::int32_t>(p.faces[f][k]));
+      put(static_cast<std::int32_t>(f < p.face_source.size() ? p.face_source[f] : -1));
+    }
+  }
+
+ private:
+  std::vector<std::uint8_t>& out_;
+};
+
+/// Reads from a byte range; every read is bounds-checked and sticky on failure.
+class Reader {
+ public:
+  Reader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+  template <class T>
+  bool get(T& value) {
+    if (!ok_ || size_ - at_ < sizeof(T)) return ok_ = false;
+    std::memcpy(&value, data_ + at_, sizeof(T));
+    at_ += sizeof(T);
+    return true;
+  }
+  /// A count of items of `item_bytes` each that must fit in the remaining bytes.
+  bool getCount(std::size_t item_bytes, std::size_t& n) {
+    std::uint64_t raw = 0;
+    if (!get(raw) || raw > (size_ - at_) / item_bytes) return ok_ = false;
+    n = static_cast<std::size_t>(raw);
+    return true;
+  }
+  bool done() const { return ok_ && at_ == size_; }
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t size_;
+  std::size_t at_ = 0;
+  bool ok_ = true;
+};
+
+/// Reads one polytope; vertex `original` must index the mesh's vertices and face
+/// sources its triangles (or be -1).
+bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
+  std::size_t nv = 0, nf = 0;
+  if (!r.getCount(kVertexBytes, nv) || nv == 0) return false;
+  p.vertices.resize(nv);
+  p.original.resize(nv);
+  const auto vertex_limit = static_cast<std::int64_t>(mesh.vertices.size());
+  for (std::size_t i = 0; i < nv; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      double x = 0.0;
+      if (!r.get(x) || !std::isfinite(x)) return false;
+      p.vertices[i][k] = x;
+    }
+    std::int32_t original = -1;
+    if (!r.get(original) || original < 0 || original >= vertex_limit) return false;
+    p.original[i] = original;
+  }
+  if (!r.getCount(kFaceBytes, nf)) return false;
+  p.faces.resize(nf);
+  p.face_source.resize(nf);
+  const auto triangle_limit = static_cast<std::int64_t>(mesh.triangles.size());
+  for (std::size_t f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      std::int32_t v = -1;
+      if (!r.get(v) || v < 0 || static_cast<std::size_t>(v) >= nv) return false;
+      p.faces[f][k] = v;
+    }
+    std::int32_t source = -1;
+    if (!r.get(source) || source < -1 || source >= triangle_limit) return false;
+    p.face_source[f] = source;
+  }
+  p.finalize();
+  return true;
+}
+
+bool getPolytopes(Reader& r, const MeshData& mesh, std::vector<ConvexPolytope>& out) {
+  std::size_t n = 0;
+  // Every polytope takes at least its two counts and one vertex.
+  if (!r.getCount(2 * sizeof(std::uint64_t) + kVertexBytes, n)) return false;
+  out.resize(n);
+  for (ConvexPolytope& p : out) {
+    if (!getPolytope(r, mesh, p)) return false;
+  }
+  return true;
+}
+
+struct Header {
+  char magic[8] = {};
+  std::uint32_t version = 0;
+  std::uint32_t endian = 0;
+  std::uint32_t kind = 0;
+  std::uint32_t reserved = 0;
+  std::uint64_t input_hash = 0;
+  std::uint64_t payload_size = 0;
+  std::uint64_t checksum = 0;
+};
+
+bool readHeader(Reader& r, Header& h) {
+  for (char& c : h.magic) {
+    if (!r.get(c)) return false;
+  }
+  return r.get(h.version) && r.get(h.endian) && r.get(h.kind) && r.get(h.reserved) &&
+         r.get(h.input_hash) && r.get(h.payload_size) && r.get(h.checksum);
+}
+
+/// The statistics the stored preprocessing implies.
+void fillStats(PieceData& data, bool convex, int virtual_faces) {
+  data.stats.convex = convex;
+  data.stats.virtual_faces = virtual_faces;
+  data.stats.patches = static_cast<int>(data.patches.size());
+  data.stats.hull_vertices = 0;
+  for (const ConvexPolytope& p : data.patches)
+    data.stats.hull_vertices += static_cast<int>(p.vertices.size());
+  data.stats.tree_depth = data.hierarchy.depth;
+}
+
+/// This version, kind and input, and a payload filling the rest of the file.
+bool headerMatches(const Header& h, std::uint64_t input_hash, ModelKind kind,
+                   std::size_t file_size) {
+  return std::memcmp(h.magic, kMagic, sizeof(kMagic)) == 0 && h.version == kPieceCacheVersion &&
+         h.endian == kEndianMarker && h.kind == static_cast<std::uint32_t>(kind) &&
+         h.reserved == 0 && h.input_hash == input_hash && file_size >= kHeaderSize &&
+         h.payload_size == file_size - kHeaderSize;
+}
+
+}  // namespace
+
+std::uint64_t fnv1a64(const void* bytes, std::size_t size, std::uint64_t hash) {
+  const auto* p = static_cast<const std::uint8_t*>(bytes);
+  for (std::size_t i = 0; i < size; ++i) {
+    hash ^= p[i];
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+std::uint64_t pieceInputHash(ModelKind kind, const MeshData& mesh) {
+  const std::uint64_t header[3] = {static_cast<std::uint64_t>(kind), mesh.vertices.size(),
+                                   mesh.triangles.size()};
+  std::uint64_t h = fnv1a64(header, sizeof(header));
+  for (const Vec3& v : mesh.vertices) {
+    const double xyz[3] = {v.x(), v.y(), v.z()};
+    h = fnv1a64(xyz, sizeof(xyz), h);
+  }
+  for (const Tri& t : mesh.triangles) {
+    const std::int32_t ids[3] = {t[0], t[1], t[2]};
+    h = fnv1a64(ids, sizeof(ids), h);
+  }
+  return h;
+}
+
+std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const PieceData& data) {
+  std::vector<std::uint8_t> payload;
+  Writer w(payload);
+  w.put(static_cast<std::uint8_t>(data.stats.convex ? 1 : 0));
+  w.put(static_cast<std::int32_t>(data.stats.virtual_faces));
+  w.putCount(data.patches.size());
+  for (const ConvexPolytope& p : data.patches) w.putPolytope(p);
+  w.putCount(data.hierarchy.nodes.size());
+  for (const HullBvhNode& n : data.hierarchy.nodes) {
+    w.put(static_cast<std::int32_t>(n.left));
+    w.put(static_cast<std::int32_t>(n.right));
+    w.put(static_cast<std::int32_t>(n.polytope));
+  }
+  w.putCount(data.hierarchy.hulls.size());
+  for (const ConvexPolytope& p : data.hierarchy.hulls) w.putPolytope(p);
+
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(kHeaderSize + payload.size());
+  Writer h(bytes);
+  for (const char c : kMagic) h.put(c);
+  h.put(kPieceCacheVersion);
+  h.put(kEndianMarker);
+  h.put(static_cast<std::uint32_t>(data.kind));
+  h.put(std::uint32_t{0});
+  h.put(input_hash);
+  h.put(static_cast<std::uint64_t>(payload.size()));
+  h.put(fnv1a64(payload.data(), payload.size()));
+  bytes.insert(bytes.end(), payload.begin(), payload.end());
+  return bytes;
+}
+
+bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
+                      PieceData& data) {
+  Reader head(bytes.data(), bytes.size());
+  Header h;
+  if (!readHeader(head, h) || !headerMatches(h, input_hash, data.kind, bytes.size())) return false;
+  const std::uint8_t* payload = bytes.data() + kHeaderSize;
+  if (fnv1a64(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
+
+  Reader r(payload, bytes.size() - kHeaderSize);
+  std::uint8_t convex = 0;
+  std::int32_t virtual_faces = 0;
+  if (!r.get(convex) || convex > 1 || !r.get(virtual_faces) || virtual_faces < 0) return false;
+  std::vector<ConvexPolytope> patches;
+  if (!getPolytopes(r, data.mesh, patches)) return false;
+  HullBvh bvh;
+  std::size_t node_count = 0;
+  if (!r.getCount(kNodeBytes, node_count)) return false;
+  bvh.nodes.resize(node_count);
+  for (HullBvhNode& n : bvh.nodes) {
+    std::int32_t left = -1, right = -1, polytope = -1;
+    if (!r.get(left) || !r.get(right) || !r.get(polytope)) return false;
+    n.left = left;
+    n.right = right;
+    n.polytope = polytope;
+  }
+  if (!getPolytopes(r, data.mesh, bvh.hulls) || !r.done()) return false;
+  if (!finishHullBvh(patches, bvh)) return false;
+  data.patches = std::move(patches);
+  data.hierarchy = std::move(bvh);
+  fillStats(data, convex != 0, virtual_faces);
+  return true;
+}
+
+bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return false;
+  // The header first: a foreign or stale file of any size is rejected unread.
+  std::vector<std::uint8_t> bytes(kHeaderSize);
+  bool ok = std::fseek(file, 0, SEEK_END) == 0;
+  const long size = ok ? std::ftell(file) : -1;
+  ok = ok && size >= static_cast<long>(kHeaderSize) && std::fseek(file, 0, SEEK_SET) == 0 &&
+       std::fread(bytes.data(), 1, kHeaderSize, file) == kHeaderSize;
+  Header h;
+  Reader head(bytes.data(), bytes.size());
+  ok = ok && readHeader(head, h) &&
+       headerMatches(h, input_hash, data.kind, static_cast<std::size_t>(size));
+  if (ok) {
+    bytes.resize(static_cast<std::size_t>(size));
+    ok = std::fread(bytes.data() + kHeaderSize, 1, bytes.size() - kHeaderSize, file) ==
+         bytes.size() - kHeaderSize;
+  }
+  std::fclose(file);
+  return ok && decodePieceCache(bytes, input_hash, data);
+}
+
+Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data) {
+  const std::vector<std::uint8_t> bytes = encodePieceCache(input_hash, data);
+  // A name of our own beside the target, so rename() replaces it in one step.
+  const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
+  const std::string temporary = path + ".tmp" + std::to_string(tick);
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  bool ok = file != nullptr;
+  if (ok) {
+    ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+    ok = std::fclose(file) == 0 && ok;
+  }
+  ok = ok && std::rename(temporary.c_str(), path.c_str()) == 0;
+  if (!ok) {
+    if (file != nullptr) std::remove(temporary.c_str());
+    return Status(ErrorCode::File, "cannot write the cache file '" + path + "'");
+  }
+  return Status::success();
+}
+
+}  // namespace sc::detail

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// The preprocessing cache file of a piece (manual List 6-5, AddTriangles' bvhFile):
+// the convex patches and the hull hierarchy, keyed by a hash of the input.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "preprocess/piece_data.h"
+
+namespace sc::detail {
+
+/// Format version; bump it whenever the layout or the preprocessing changes, so
+/// files written by other versions are rebuilt.
+inline constexpr std::uint32_t kPieceCacheVersion = 1;
+
+/// FNV-1a 64 of `size` bytes, continuing from `hash` (start: kFnvOffset).
+inline constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
+std::uint64_t fnv1a64(const void* bytes, std::size_t size, std::uint64_t hash = kFnvOffset);
+
+/// Key of a piece's cache: FNV-1a 64 of the kind and the input arrays as given
+/// (before any orientation fix).
+std::uint64_t pieceInputHash(ModelKind kind, const MeshData& mesh);
+
+/// The file's bytes for `data` (its patches, hierarchy and the statistics they
+/// imply). Layout, little-endian: header {magic "SCPIECE\0", u32 version,
+/// u32 0x01020304, u32 kind, u32 0, u64 input hash, u64 payload size, u64 FNV-1a 64
+/// of the payload}, then the payload.
+std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const PieceData& data);
+
+/// Fills data.patches, data.hierarchy and the statistics they carry from `bytes`.
+/// `data.kind` and `data.mesh` (as stored) must be set: every index read is checked
+/// against them. False, leaving `data` unchanged, unless the bytes are a complete
+/// file of this version and kind for this input with a matching checksum and valid
+/// contents. Never trusts a count: each is bounded by the bytes that remain.
+bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
+                      PieceData& data);
+
+/// decodePieceCache on the file at `path`; false when it is missing or unreadable.
+bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data);
+
+/// Writes the file through a temporary file renamed over `path`, so readers never
+/// see a partial file. File status when it cannot be written.
+Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data);
+
+}  // namespace sc::detail

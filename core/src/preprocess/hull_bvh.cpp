@@ -1,0 +1,242 @@
+// SPDX-License-Identifier: MIT
+// Hull hierarchy (manual Fig. 6-14). Outline:
+//  1. top-down: split the leaves at the median of their centres along the principal
+//     axis of those centres (largest eigenvector of their covariance), so the tree is
+//     balanced (depth ceil(log2 n)) whatever the shape;
+//  2. bottom-up: an inner node's polytope is the hull of its children's vertices.
+//     Up to kPointSetLimit distinct points are kept as a bare point set (the same
+//     hull; GJK scans it), larger sets go through qhull, and a set qhull finds flat
+//     is reduced to its 2-D hull in its plane.
+// Departure from SWIFT++'s bottom-up merging: the top-down median split costs
+// O(n log n) and never degenerates; hulls are not simplified, so they are exact.
+#include "preprocess/hull_bvh.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+
+#include "preprocess/convex_hull.h"
+
+namespace sc::detail {
+namespace {
+
+/// Inner nodes with at most this many distinct points skip qhull.
+constexpr int kPointSetLimit = 24;
+
+/// Unit eigenvectors of the covariance of `points[ids]`, largest eigenvalue last.
+Mat3 principalAxes(const std::vector<Vec3>& points, const int* ids, int count) {
+  Vec3 mean = Vec3::Zero();
+  for (int k = 0; k < count; ++k) mean += points[ids[k]];
+  mean /= static_cast<double>(count);
+  Mat3 covariance = Mat3::Zero();
+  for (int k = 0; k < count; ++k) {
+    const Vec3 d = points[ids[k]] - mean;
+    covariance += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat3> solver(covariance);
+  if (solver.info() != Eigen::Success) return Mat3::Identity();
+  return solver.eigenvectors();
+}
+
+/// A polytope of bare points (no faces): GJK scans its vertices.
+ConvexPolytope pointSet(const std::vector<Vec3>& points, const std::vector<int>& original) {
+  ConvexPolytope poly;
+  poly.vertices = points;
+  poly.original = original;
+  poly.finalize();
+  return poly;
+}
+
+/// 2-D hull of points lying in a plane (within rounding): Andrew's monotone chain
+/// in the plane of the two largest principal axes; strict corners only.
+ConvexPolytope flatHull(const std::vector<Vec3>& points, const std::vector<int>& original) {
+  std::vector<int> ids(points.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int>(i);
+  const Mat3 axes = principalAxes(points, ids.data(), static_cast<int>(ids.size()));
+  const Vec3 u = axes.col(2), v = axes.col(1);
+  std::vector<std::pair<double, double>> planar(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) planar[i] = {u.dot(points[i]), v.dot(points[i])};
+  std::sort(ids.begin(), ids.end(),
+            [&](int a, int b) { return planar[a] != planar[b] ? planar[a] < planar[b] : a < b; });
+  const auto cross = [&](int o, int a, int b) {
+    return (planar[a].first - planar[o].first) * (planar[b].second - planar[o].second) -
+           (planar[a].second - planar[o].second) * (planar[b].first - planar[o].first);
+  };
+  std::vector<int> chain(2 * ids.size() + 1);
+  int k = 0;
+  for (int i : ids) {  // lower chain
+    while (k >= 2 && cross(chain[k - 2], chain[k - 1], i) <= 0.0) --k;
+    chain[k++] = i;
+  }
+  const int lower = k + 1;
+  for (auto it = ids.rbegin() + 1; it != ids.rend(); ++it) {  // upper chain
+    while (k >= lower && cross(chain[k - 2], chain[k - 1], *it) <= 0.0) --k;
+    chain[k++] = *it;
+  }
+  if (k > 1) --k;  // the last point repeats the first
+  std::vector<Vec3> kept;
+  std::vector<int> kept_original;
+  for (int m = 0; m < k; ++m) {
+    kept.push_back(points[chain[m]]);
+    kept_original.push_back(original[chain[m]]);
+  }
+  return pointSet(kept, kept_original);
+}
+
+class Builder {
+ public:
+  Builder(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress)
+      : leaves_(leaves), progress_(progress) {}
+
+  HullBvh run() {
+    const int n = static_cast<int>(leaves_.size());
+    if (n == 0) return {};
+    order_.resize(leaves_.size());
+    centres_.reserve(leaves_.size());
+    for (int i = 0; i < n; ++i) {
+      order_[i] = i;
+      centres_.push_back(leaves_[i].center);
+    }
+    bvh_.nodes.reserve(2 * leaves_.size() - 1);
+    bvh_.hulls.reserve(leaves_.size() - 1);
+    inner_total_ = n - 1;
+    build(0, n);
+    finishHullBvh(leaves_, bvh_);
+    return std::move(bvh_);
+  }
+
+ private:
+  int build(int begin, int end) {
+    const int index = static_cast<int>(bvh_.nodes.size());
+    bvh_.nodes.emplace_back();
+    if (end - begin == 1) {
+      bvh_.nodes[index].polytope = order_[begin];
+      return index;
+    }
+    const Vec3 axis = principalAxes(centres_, order_.data() + begin, end - begin).col(2);
+    const int mid = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                     [&](int a, int b) {
+                       const double da = axis.dot(centres_[a]), db = axis.dot(centres_[b]);
+                       return da != db ? da < db : a < b;
+                     });
+    const int left = build(begin, mid);
+    const int right = build(mid, end);
+    bvh_.nodes[index].left = left;
+    bvh_.nodes[index].right = right;
+    bvh_.nodes[index].polytope = static_cast<int>(bvh_.hulls.size());
+    bvh_.hulls.push_back(hullOf(left, right));
+    reportProgress();
+    return index;
+  }
+
+  const ConvexPolytope& polytopeOf(int node) const {
+    const HullBvhNode& n = bvh_.nodes[node];
+    return n.leaf() ? leaves_[n.polytope] : bvh_.hulls[n.polytope];
+  }
+
+  /// Hull of the children's vertices, each input vertex once.
+  ConvexPolytope hullOf(int left, int right) {
+    keyed_.clear();
+    for (const int child : {left, right}) {
+      const ConvexPolytope& p = polytopeOf(child);
+      for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+        const int id = i < p.original.size() ? p.original[i] : -1;
+        keyed_.push_back({id, &p.vertices[i]});
+      }
+    }
+    // Shared input vertices once: same original index and the same point.
+    std::stable_sort(keyed_.begin(), keyed_.end(),
+                     [](const Keyed& a, const Keyed& b) { return a.original < b.original; });
+    std::vector<Vec3> points;
+    std::vector<int> original;
+    for (std::size_t k = 0; k < keyed_.size(); ++k) {
+      if (k > 0 && keyed_[k].original == keyed_[k - 1].original &&
+          *keyed_[k].point == *keyed_[k - 1].point)
+        continue;
+      points.push_back(*keyed_[k].point);
+      original.push_back(keyed_[k].original);
+    }
+    if (static_cast<int>(points.size()) <= kPointSetLimit) return pointSet(points, original);
+    Result<ConvexPolytope> hull = convexHull(points, original);
+    if (hull.ok()) return std::move(hull.value());
+    return flatHull(points, original);
+  }
+
+  void reportProgress() {
+    ++inner_done_;
+    if (!progress_) return;
+    const double fraction = static_cast<double>(inner_done_) / inner_total_;
+    if (fraction - reported_ < 0.01 && inner_done_ < inner_total_) return;
+    reported_ = fraction;
+    progress_(fraction, "hierarchy");
+  }
+
+  struct Keyed {
+    int original;
+    const Vec3* point;
+  };
+
+  const std::vector<ConvexPolytope>& leaves_;
+  const ProgressCallback& progress_;
+  std::vector<int> order_;
+  std::vector<Vec3> centres_;
+  std::vector<Keyed> keyed_;
+  HullBvh bvh_;
+  int inner_total_ = 0;
+  int inner_done_ = 0;
+  double reported_ = 0.0;
+};
+
+}  // namespace
+
+HullBvh buildHullBvh(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress) {
+  return Builder(leaves, progress).run();
+}
+
+bool finishHullBvh(const std::vector<ConvexPolytope>& leaves, HullBvh& bvh) {
+  const int node_count = static_cast<int>(bvh.nodes.size());
+  const int leaf_count = static_cast<int>(leaves.size());
+  const int hull_count = static_cast<int>(bvh.hulls.size());
+  if (leaf_count == 0) return node_count == 0 && hull_count == 0;
+  if (node_count != 2 * leaf_count - 1 || hull_count != leaf_count - 1) return false;
+  std::vector<int> leaf_node(leaves.size(), -1);
+  std::vector<char> node_seen(bvh.nodes.size(), 0), hull_seen(bvh.hulls.size(), 0);
+  std::vector<std::pair<int, int>> stack = {{0, 0}};  // node, depth
+  int depth = 0;
+  node_seen[0] = 1;
+  while (!stack.empty()) {
+    const auto [index, level] = stack.back();
+    stack.pop_back();
+    depth = std::max(depth, level);
+    const HullBvhNode& node = bvh.nodes[index];
+    if (node.leaf()) {
+      if (node.right >= 0 || node.polytope < 0 || node.polytope >= leaf_count ||
+          leaf_node[node.polytope] >= 0)
+        return false;
+      leaf_node[node.polytope] = index;
+      continue;
+    }
+    if (node.polytope < 0 || node.polytope >= hull_count || hull_seen[node.polytope]) return false;
+    hull_seen[node.polytope] = 1;
+    for (const int child : {node.left, node.right}) {
+      if (child <= 0 || child >= node_count || node_seen[child]) return false;
+      node_seen[child] = 1;
+      stack.emplace_back(child, level + 1);
+    }
+  }
+  // With 2n - 1 nodes all reached, the n leaves and n - 1 hulls are each used once.
+  if (std::find(node_seen.begin(), node_seen.end(), 0) != node_seen.end()) return false;
+  for (HullBvhNode& node : bvh.nodes) {
+    const ConvexPolytope& p = node.leaf() ? leaves[node.polytope] : bvh.hulls[node.polytope];
+    node.center = p.center;
+    node.radius = p.radius;
+  }
+  bvh.leaf_node = std::move(leaf_node);
+  bvh.depth = depth;
+  return true;
+}
+
+}  // namespace sc::detail

@@ -1,0 +1,377 @@
+// SPDX-License-Identifier: MIT
+// Piece cache file: a valid file round-trips the decomposition and hierarchy
+// exactly; anything truncated, corrupt, foreign or of another version is detected,
+// rebuilt to the same result as a fresh build and rewritten; an unwritable file is
+// a File warning with the piece; counts read are never trusted.
+#include "preprocess/cache_file.h"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "query/gjk.h"
+#include "sc.h"
+#include "support/meshes.h"
+#include "support/shapes.h"
+#include "support/test_support.h"
+
+namespace sc::detail {
+namespace {
+
+// Header: magic 8, version 4, endian 4, kind 4, reserved 4, hash 8, size 8, checksum 8.
+constexpr std::size_t kHeaderBytes = 48;
+constexpr std::size_t kVersionOffset = 8;
+constexpr std::size_t kHashOffset = 24;
+
+std::string tempPath(const std::string& name) {
+  const char* dir = std::getenv("TMPDIR");
+  return std::string(dir != nullptr ? dir : "/tmp") + "/sc_cache_test_" +
+         std::to_string(::getpid()) + "_" + name;
+}
+
+std::vector<std::uint8_t> readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
+}
+
+/// Removes the file when the test ends.
+struct TempFile {
+  explicit TempFile(const std::string& name) : path(tempPath(name)) { std::remove(path.c_str()); }
+  ~TempFile() { std::remove(path.c_str()); }
+  std::string path;
+};
+
+void expectSamePolytope(const ConvexPolytope& a, const ConvexPolytope& b) {
+  ASSERT_EQ(a.vertices, b.vertices);
+  ASSERT_EQ(a.original, b.original);
+  ASSERT_EQ(a.faces, b.faces);
+  ASSERT_EQ(a.face_source, b.face_source);
+  ASSERT_EQ(a.adjacency_start, b.adjacency_start);
+  ASSERT_EQ(a.adjacency, b.adjacency);
+  ASSERT_EQ(a.center, b.center);
+  ASSERT_EQ(a.radius, b.radius);
+}
+
+/// Same leaves, hierarchy, statistics (except timing and origin) as `expected`.
+void expectSamePiece(const PieceData& expected, const PieceData& actual) {
+  ASSERT_EQ(expected.patches.size(), actual.patches.size());
+  for (std::size_t i = 0; i < expected.patches.size(); ++i)
+    ASSERT_NO_FATAL_FAILURE(expectSamePolytope(expected.patches[i], actual.patches[i])) << i;
+  const HullBvh& a = expected.hierarchy;
+  const HullBvh& b = actual.hierarchy;
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    ASSERT_EQ(a.nodes[i].left, b.nodes[i].left);
+    ASSERT_EQ(a.nodes[i].right, b.nodes[i].right);
+    ASSERT_EQ(a.nodes[i].polytope, b.nodes[i].polytope);
+    ASSERT_EQ(a.nodes[i].center, b.nodes[i].center);
+    ASSERT_EQ(a.nodes[i].radius, b.nodes[i].radius);
+  }
+  ASSERT_EQ(a.hulls.size(), b.hulls.size());
+  for (std::size_t i = 0; i < a.hulls.size(); ++i)
+    ASSERT_NO_FATAL_FAILURE(expectSamePolytope(a.hulls[i], b.hulls[i])) << i;
+  EXPECT_EQ(a.leaf_node, b.leaf_node);
+  EXPECT_EQ(a.depth, b.depth);
+  const PieceStats& s = expected.stats;
+  const PieceStats& t = actual.stats;
+  EXPECT_EQ(s.patches, t.patches);
+  EXPECT_EQ(s.virtual_faces, t.virtual_faces);
+  EXPECT_EQ(s.hull_vertices, t.hull_vertices);
+  EXPECT_EQ(s.tree_depth, t.tree_depth);
+  EXPECT_EQ(s.convex, t.convex);
+  EXPECT_EQ(s.flipped, t.flipped);
+}
+
+/// A closed prism over a star with `points` tips: non-convex, 12 * points triangles.
+MeshData starPrism(int points, double inner, double outer, double height) {
+  MeshData m;
+  const int n = 2 * points;
+  for (int level = 0; level < 2; ++level) {
+    for (int i = 0; i < n; ++i) {
+      const double angle = 3.14159265358979323846 * i / points;
+      const double r = i % 2 == 0 ? outer : inner;
+      m.vertices.emplace_back(r * std::cos(angle), r * std::sin(angle), level * height);
+    }
+  }
+  m.vertices.emplace_back(0.0, 0.0, 0.0);
+  m.vertices.emplace_back(0.0, 0.0, height);
+  const int bottom_centre = 2 * n, top_centre = 2 * n + 1;
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    m.triangles.emplace_back(i, j, n + j);
+    m.triangles.emplace_back(i, n + j, n + i);
+    m.triangles.emplace_back(top_centre, n + i, n + j);
+    m.triangles.emplace_back(bottom_centre, j, i);
+  }
+  return m;
+}
+
+class CacheFile : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    star_ = new MeshData(starPrism(12, 0.4, 1.0, 0.3));
+    other_ = new MeshData(starPrism(7, 0.5, 1.0, 0.2));
+    Result<PiecePtr> fresh = buildPiece(ModelKind::ClosedPolyhedron, *star_);
+    if (fresh.ok()) fresh_star_ = new PiecePtr(fresh.value());
+  }
+  static void TearDownTestSuite() {
+    delete star_;
+    delete other_;
+    delete fresh_star_;
+  }
+  void SetUp() override {
+    if (fresh_star_ == nullptr) GTEST_FAIL() << "the star prism did not build";
+    ASSERT_GT(fresh().patches.size(), 1u) << "the star prism should be non-convex";
+  }
+
+  /// Builds the star prism through `path`.
+  static Result<PiecePtr> starThrough(const std::string& path) {
+    BuildOptions options;
+    options.cache_file = path;
+    return buildPiece(ModelKind::ClosedPolyhedron, *star_, options);
+  }
+  static const PieceData& fresh() { return (*fresh_star_)->internals(); }
+
+  /// The damaged file is not trusted: the piece equals a fresh build and the file
+  /// is rewritten with the valid bytes.
+  static void expectRebuiltAndRewritten(const std::string& path,
+                                        const std::vector<std::uint8_t>& valid) {
+    const Result<PiecePtr> rebuilt = starThrough(path);
+    ASSERT_TRUE(rebuilt.ok()) << rebuilt.status().message();
+    EXPECT_FALSE(rebuilt.value()->stats().from_cache);
+    ASSERT_NO_FATAL_FAILURE(expectSamePiece(fresh(), rebuilt.value()->internals()));
+    EXPECT_EQ(readBytes(path), valid);
+    const Result<PiecePtr> again = starThrough(path);
+    ASSERT_TRUE(again.ok());
+    EXPECT_TRUE(again.value()->stats().from_cache);
+  }
+
+  static MeshData* star_;
+  static MeshData* other_;
+  static PiecePtr* fresh_star_;
+};
+
+MeshData* CacheFile::star_ = nullptr;
+MeshData* CacheFile::other_ = nullptr;
+PiecePtr* CacheFile::fresh_star_ = nullptr;
+
+TEST(CacheFileMesh, RealMeshRoundTripIsExactAndAnswersTheSame) {
+  MeshData elephant;
+  ASSERT_NO_FATAL_FAILURE(elephant = test::loadTestMesh("elephant"));
+  const Result<PiecePtr> fresh_piece = buildPiece(ModelKind::ClosedPolyhedron, elephant);
+  ASSERT_TRUE(fresh_piece.ok());
+  TempFile file("elephant.bvh");
+  BuildOptions options;
+  options.cache_file = file.path;
+  const Result<PiecePtr> first = buildPiece(ModelKind::ClosedPolyhedron, elephant, options);
+  ASSERT_TRUE(first.ok()) << first.status().message();
+  EXPECT_FALSE(first.value()->stats().from_cache);
+  const Result<PiecePtr> second = buildPiece(ModelKind::ClosedPolyhedron, elephant, options);
+  ASSERT_TRUE(second.ok()) << second.status().message();
+  EXPECT_TRUE(second.value()->stats().from_cache);
+  const PieceData& a = fresh_piece.value()->internals();
+  const PieceData& b = second.value()->internals();
+  ASSERT_NO_FATAL_FAILURE(expectSamePiece(a, b));
+  EXPECT_EQ(b.stats.virtual_faces, a.stats.virtual_faces);
+  EXPECT_GT(a.stats.virtual_faces, 0);
+  // Same queries: GJK between every 50th patch pair of the two copies, placed apart.
+  const Rigid shift{Mat3(Eigen::AngleAxisd(0.3, Vec3::UnitZ())), Vec3(0.05, 0.02, 0.01)};
+  for (std::size_t i = 0; i < a.patches.size(); i += 50) {
+    for (std::size_t j = 0; j < a.patches.size(); j += 50) {
+      SimplexCache ca, cb;
+      const GjkResult ra = gjkDistance(a.patches[i], shift, a.patches[j], Rigid(), {}, ca);
+      const GjkResult rb = gjkDistance(b.patches[i], shift, b.patches[j], Rigid(), {}, cb);
+      ASSERT_EQ(ra.status, rb.status);
+      ASSERT_EQ(ra.distance, rb.distance);
+    }
+  }
+}
+
+TEST_F(CacheFile, RoundTripLoadsTheSamePreprocessing) {
+  TempFile file("roundtrip.bvh");
+  const Result<PiecePtr> first = starThrough(file.path);
+  ASSERT_TRUE(first.ok()) << first.status().message();
+  EXPECT_FALSE(first.value()->stats().from_cache);
+  ASSERT_NO_FATAL_FAILURE(expectSamePiece(fresh(), first.value()->internals()));
+  const std::vector<std::uint8_t> bytes = readBytes(file.path);
+  ASSERT_GT(bytes.size(), kHeaderBytes);
+
+  const Result<PiecePtr> second = starThrough(file.path);
+  ASSERT_TRUE(second.ok()) << second.status().message();
+  EXPECT_TRUE(second.value()->stats().from_cache);
+  ASSERT_NO_FATAL_FAILURE(expectSamePiece(fresh(), second.value()->internals()));
+  EXPECT_EQ(readBytes(file.path), bytes) << "a valid file is not rewritten";
+}
+
+TEST_F(CacheFile, EncodeDecodeRoundTripIsExact) {
+  const std::uint64_t key = pieceInputHash(ModelKind::ClosedPolyhedron, *star_);
+  const std::vector<std::uint8_t> bytes = encodePieceCache(key, fresh());
+  PieceData loaded;
+  loaded.kind = ModelKind::ClosedPolyhedron;
+  loaded.mesh = fresh().mesh;
+  ASSERT_TRUE(decodePieceCache(bytes, key, loaded));
+  loaded.stats.flipped = fresh().stats.flipped;
+  ASSERT_NO_FATAL_FAILURE(expectSamePiece(fresh(), loaded));
+  // Wrong key or kind: rejected.
+  PieceData other = loaded;
+  EXPECT_FALSE(decodePieceCache(bytes, key + 1, other));
+  other.kind = ModelKind::TriangleSoup;
+  EXPECT_FALSE(decodePieceCache(bytes, key, other));
+}
+
+TEST_F(CacheFile, TruncatedFilesAreRebuiltAndRewritten) {
+  TempFile file("truncated.bvh");
+  ASSERT_TRUE(starThrough(file.path).ok());
+  const std::vector<std::uint8_t> valid = readBytes(file.path);
+  for (const std::size_t length :
+       {std::size_t{0}, std::size_t{1}, kHeaderBytes - 1, kHeaderBytes, kHeaderBytes + 5,
+        valid.size() / 3, valid.size() / 2, valid.size() - 8, valid.size() - 1}) {
+    SCOPED_TRACE(::testing::Message() << "truncated to " << length << " of " << valid.size());
+    writeBytes(file.path, std::vector<std::uint8_t>(valid.begin(), valid.begin() + length));
+    ASSERT_NO_FATAL_FAILURE(expectRebuiltAndRewritten(file.path, valid));
+  }
+  // Longer than it says: rejected too.
+  std::vector<std::uint8_t> longer = valid;
+  longer.push_back(0);
+  writeBytes(file.path, longer);
+  ASSERT_NO_FATAL_FAILURE(expectRebuiltAndRewritten(file.path, valid));
+}
+
+TEST_F(CacheFile, FlippedBytesAreRebuiltAndRewritten) {
+  TempFile file("flipped.bvh");
+  ASSERT_TRUE(starThrough(file.path).ok());
+  const std::vector<std::uint8_t> valid = readBytes(file.path);
+  for (const std::size_t at :
+       {std::size_t{0}, kVersionOffset, std::size_t{20}, kHashOffset + 3, std::size_t{34},
+        std::size_t{45}, kHeaderBytes, kHeaderBytes + 100, valid.size() / 2, valid.size() - 1}) {
+    for (const std::uint8_t mask : {std::uint8_t{0x01}, std::uint8_t{0x80}}) {
+      SCOPED_TRACE(::testing::Message() << "byte " << at << " xor " << int{mask});
+      std::vector<std::uint8_t> bad = valid;
+      bad[at] ^= mask;
+      writeBytes(file.path, bad);
+      ASSERT_NO_FATAL_FAILURE(expectRebuiltAndRewritten(file.path, valid));
+    }
+  }
+}
+
+TEST_F(CacheFile, AnotherMeshsCacheIsRebuiltForThisMesh) {
+  TempFile file("foreign.bvh");
+  BuildOptions options;
+  options.cache_file = file.path;
+  const Result<PiecePtr> other = buildPiece(ModelKind::ClosedPolyhedron, *other_, options);
+  ASSERT_TRUE(other.ok()) << other.status().message();
+  ASSERT_FALSE(readBytes(file.path).empty());
+  const std::vector<std::uint8_t> valid =
+      encodePieceCache(pieceInputHash(ModelKind::ClosedPolyhedron, *star_), fresh());
+  ASSERT_NO_FATAL_FAILURE(expectRebuiltAndRewritten(file.path, valid));
+  // The same arrays as a soup are another input too.
+  const Result<PiecePtr> soup = buildPiece(ModelKind::TriangleSoup, *star_, options);
+  ASSERT_TRUE(soup.ok());
+  EXPECT_FALSE(soup.value()->stats().from_cache);
+  EXPECT_EQ(soup.value()->internals().patches.size(), star_->triangles.size());
+}
+
+TEST_F(CacheFile, OtherVersionIsRebuiltAndRewritten) {
+  TempFile file("version.bvh");
+  ASSERT_TRUE(starThrough(file.path).ok());
+  const std::vector<std::uint8_t> valid = readBytes(file.path);
+  for (const std::uint32_t version : {kPieceCacheVersion - 1, kPieceCacheVersion + 1}) {
+    std::vector<std::uint8_t> other = valid;
+    std::memcpy(other.data() + kVersionOffset, &version, sizeof(version));
+    writeBytes(file.path, other);
+    ASSERT_NO_FATAL_FAILURE(expectRebuiltAndRewritten(file.path, valid));
+  }
+}
+
+TEST_F(CacheFile, UnwritableFileGivesThePieceAndAFileWarning) {
+  BuildOptions options;
+  options.cache_file = tempPath("no_such_dir") + "/piece.bvh";
+  const Result<PiecePtr> piece = buildPiece(ModelKind::ClosedPolyhedron, *star_, options);
+  ASSERT_TRUE(piece.hasValue());
+  EXPECT_EQ(piece.status().code(), ErrorCode::File);
+  EXPECT_FALSE(piece.value()->stats().from_cache);
+  ASSERT_NO_FATAL_FAILURE(expectSamePiece(fresh(), piece.value()->internals()));
+
+  // Through sc.h: SC_ERROR_FILE, and the piece is added.
+  SCObject object(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
+  std::vector<double> xyz;
+  for (const Vec3& v : star_->vertices) xyz.insert(xyz.end(), {v.x(), v.y(), v.z()});
+  std::vector<int> ids;
+  for (const Tri& t : star_->triangles) ids.insert(ids.end(), {t[0], t[1], t[2]});
+  EXPECT_EQ(
+      object.AddTriangles(xyz.data(), static_cast<int>(star_->vertices.size()), ids.data(),
+                          static_cast<int>(star_->triangles.size()), options.cache_file.c_str()),
+      SC_ERROR_FILE);
+}
+
+/// Re-signs a modified payload, so decoding gets past the checksum.
+void resign(std::vector<std::uint8_t>& bytes) {
+  const std::uint64_t size = bytes.size() - kHeaderBytes;
+  const std::uint64_t sum = fnv1a64(bytes.data() + kHeaderBytes, size);
+  std::memcpy(bytes.data() + 32, &size, sizeof(size));
+  std::memcpy(bytes.data() + 40, &sum, sizeof(sum));
+}
+
+TEST_F(CacheFile, CountsAndIndicesReadAreNeverTrusted) {
+  const std::uint64_t key = pieceInputHash(ModelKind::ClosedPolyhedron, *star_);
+  const std::vector<std::uint8_t> valid = encodePieceCache(key, fresh());
+  PieceData target;
+  target.kind = ModelKind::ClosedPolyhedron;
+  target.mesh = fresh().mesh;
+  // The patch count (after the convex flag and the virtual face count) made huge.
+  std::vector<std::uint8_t> bad = valid;
+  const std::uint64_t huge = std::uint64_t{1} << 60;
+  std::memcpy(bad.data() + kHeaderBytes + 5, &huge, sizeof(huge));
+  resign(bad);
+  EXPECT_FALSE(decodePieceCache(bad, key, target));
+  EXPECT_TRUE(target.patches.empty()) << "a rejected file leaves the piece unchanged";
+  // Random corruption behind a valid checksum: rejected or, if it happens to keep
+  // every count and index valid, accepted; never a crash (run under ASan).
+  test::Rng rng(0xCAC4E);
+  int rejected = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<std::uint8_t> fuzzed = valid;
+    const int flips = 1 + static_cast<int>(rng() % 4);
+    for (int k = 0; k < flips; ++k) {
+      const std::size_t at = kHeaderBytes + rng() % (fuzzed.size() - kHeaderBytes);
+      fuzzed[at] = static_cast<std::uint8_t>(rng());
+    }
+    resign(fuzzed);
+    PieceData out;
+    out.kind = ModelKind::ClosedPolyhedron;
+    out.mesh = fresh().mesh;
+    if (!decodePieceCache(fuzzed, key, out)) ++rejected;
+  }
+  EXPECT_GT(rejected, 0);
+  std::printf("[ cache file ] %d of 300 re-signed corrupt payloads rejected\n", rejected);
+}
+
+TEST(PieceInputHash, ChangesWithTheInput) {
+  MeshData mesh = test::boxMesh(Vec3(1, 1, 1));
+  const std::uint64_t h = pieceInputHash(ModelKind::ClosedPolyhedron, mesh);
+  EXPECT_EQ(h, pieceInputHash(ModelKind::ClosedPolyhedron, mesh));
+  EXPECT_NE(h, pieceInputHash(ModelKind::TriangleSoup, mesh));
+  MeshData moved = mesh;
+  moved.vertices[3].x() = std::nextafter(moved.vertices[3].x(), 2.0);
+  EXPECT_NE(h, pieceInputHash(ModelKind::ClosedPolyhedron, moved));
+  MeshData reordered = mesh;
+  std::swap(reordered.triangles[0], reordered.triangles[1]);
+  EXPECT_NE(h, pieceInputHash(ModelKind::ClosedPolyhedron, reordered));
+}
+
+}  // namespace
+}  // namespace sc::detail

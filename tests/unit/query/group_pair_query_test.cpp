@@ -1,0 +1,309 @@
+// SPDX-License-Identifier: MIT
+// Hull-hierarchy traversal between two groups against brute force over every leaf
+// pair: distance, contacts within a gap, intersection and time of impact agree;
+// coherence (seeded bound, shortcuts) changes the work, never the answer.
+#include "query/group_pair_query.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "support/meshes.h"
+#include "support/shapes.h"
+#include "support/test_support.h"
+
+namespace sc::detail {
+namespace {
+
+/// A soup of `count` random triangles of about `size` in a box of side `extent`.
+MeshData randomSoup(test::Rng& rng, int count, double size, double extent) {
+  MeshData soup;
+  for (int t = 0; t < count; ++t) {
+    const Vec3 c =
+        0.5 * extent *
+        Vec3(test::uniform(rng, -1, 1), test::uniform(rng, -1, 1), test::uniform(rng, -1, 1));
+    for (int k = 0; k < 3; ++k) soup.vertices.push_back(c + size * test::randomDirection(rng));
+    soup.triangles.emplace_back(3 * t, 3 * t + 1, 3 * t + 2);
+  }
+  return soup;
+}
+
+ModelPtr modelOf(ModelKind kind, std::vector<MeshData> meshes) {
+  std::vector<PiecePtr> pieces;
+  for (MeshData& m : meshes) {
+    Result<PiecePtr> p = buildPiece(kind, std::move(m));
+    EXPECT_TRUE(p.ok()) << p.status().message();
+    if (p.ok()) pieces.push_back(p.value());
+  }
+  return std::make_shared<const Model>(kind, std::move(pieces));
+}
+
+/// Every leaf pair by plain GJK, for reference.
+struct BruteForce {
+  std::vector<Leaf> t, o;
+
+  explicit BruteForce(const GroupPairQuery& q) {
+    for (int i = 0; i < q.targetLeafCount(); ++i) t.push_back(q.targetLeaf(i));
+    for (int j = 0; j < q.opponentLeafCount(); ++j) o.push_back(q.opponentLeaf(j));
+  }
+  GjkResult pair(int i, int j, const Rigid& o_from_t) const {
+    SimplexCache cache;
+    return gjkDistance(*t[i].poly, o_from_t * t[i].group_from_leaf, *o[j].poly,
+                       o[j].group_from_leaf, {}, cache);
+  }
+  double gap(int i, int j, const Rigid& o_from_t) const {
+    const GjkResult r = pair(i, j, o_from_t);
+    return r.status == GjkStatus::Intersecting ? 0.0 : r.distance;
+  }
+  double distance(const Rigid& o_from_t) const {
+    double best = kInfinity;
+    for (int i = 0; i < static_cast<int>(t.size()); ++i)
+      for (int j = 0; j < static_cast<int>(o.size()); ++j)
+        best = std::min(best, gap(i, j, o_from_t));
+    return best;
+  }
+  /// Conservative advancement of every pair not skipped, as documented.
+  double toi(const Rigid& o_from_t, const Vec3& delta, double stop_gap,
+             const std::vector<LeafPair>& skip) const {
+    double limit = 1.0;
+    for (int i = 0; i < static_cast<int>(t.size()); ++i) {
+      for (int j = 0; j < static_cast<int>(o.size()); ++j) {
+        if (std::binary_search(skip.begin(), skip.end(), LeafPair{i, j})) continue;
+        double s = 0.0;
+        for (int step = 0; step < 64 && s < limit; ++step) {
+          const Rigid at{o_from_t.rotation, o_from_t.translation + s * delta};
+          const GjkResult r = pair(i, j, at);
+          if (r.status == GjkStatus::Intersecting || r.distance <= stop_gap) break;
+          const double rate = -r.normal.dot(delta);
+          if (rate <= 0.0) {
+            s = limit;
+            break;
+          }
+          s = std::min(limit, s + (r.distance - 0.5 * stop_gap) / rate);
+        }
+        limit = std::min(limit, s);
+      }
+    }
+    return limit;
+  }
+};
+
+class GroupPairQueryTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    test::Rng rng(0x6A11);
+    MeshData elephant;
+    ASSERT_NO_FATAL_FAILURE(elephant = test::loadTestMesh("elephant"));
+    closed_ = modelOf(ModelKind::ClosedPolyhedron, {elephant});
+    // Two soup pieces in one model, the second part shifted within the group.
+    soup_ = modelOf(ModelKind::TriangleSoup,
+                    {randomSoup(rng, 60, 0.08, 0.6), randomSoup(rng, 40, 0.05, 0.4)});
+    box_ = modelOf(ModelKind::ClosedPolyhedron, {test::boxMesh(Vec3(0.05, 0.1, 0.02))});
+    t_parts_[0] = Part{soup_.get(), Rigid(), 1};
+    t_parts_[1] = Part{box_.get(),
+                       Rigid{Mat3(Eigen::AngleAxisd(0.4, Vec3::UnitX())), Vec3(0.3, 0.0, 0.1)}, 2};
+    o_parts_[0] = Part{closed_.get(), Rigid(), 3};
+    target_ = GroupView{t_parts_, 2, Placement()};
+    opponent_ = GroupView{o_parts_, 1, Placement()};
+  }
+
+  /// Target placed near the elephant: random rotation, centre within `spread`.
+  Rigid randomPose(test::Rng& rng, double spread) const {
+    const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
+    return Rigid{test::randomRotation(rng).toRotationMatrix(),
+                 centre + spread * Vec3(test::uniform(rng, -1, 1), test::uniform(rng, -1, 1),
+                                        test::uniform(rng, -1, 1))};
+  }
+
+  ModelPtr closed_, soup_, box_;
+  Part t_parts_[2];
+  Part o_parts_[1];
+  GroupView target_, opponent_;
+};
+
+TEST_F(GroupPairQueryTest, LeavesAreNumberedPieceByPiece) {
+  GroupPairQuery q;
+  q.bind(target_, opponent_);
+  ASSERT_EQ(q.targetLeafCount(), 60 + 40 + 1);
+  EXPECT_EQ(q.opponentLeafCount(),
+            static_cast<int>(closed_->pieces()[0]->internals().patches.size()));
+  EXPECT_EQ(q.targetLeaf(59).piece, 0);
+  EXPECT_EQ(q.targetLeaf(60).piece, 1);
+  EXPECT_EQ(q.targetLeaf(99).part, 0);
+  const Leaf box = q.targetLeaf(100);
+  EXPECT_EQ(box.part, 1);
+  EXPECT_EQ(box.poly, &box_->pieces()[0]->internals().patches[0]);
+  EXPECT_VEC_NEAR(box.center, t_parts_[1].group_from_model * box.poly->center, 1e-15);
+  ASSERT_EQ(q.targetLeaves().size(), 101u);
+  EXPECT_EQ(q.targetLeaves()[100].poly, box.poly);
+}
+
+TEST_F(GroupPairQueryTest, DistanceContactsAndIntersectionMatchAllLeafPairs) {
+  GroupPairQuery q;
+  q.bind(target_, opponent_);
+  const BruteForce brute(q);
+  test::Rng rng(42);
+  int apart = 0, touching = 0, with_contacts = 0;
+  for (int c = 0; c < 25; ++c) {
+    SCOPED_TRACE(c);
+    const Rigid pose = randomPose(rng, 0.8);
+    const double expected = brute.distance(pose);
+    LeafContact best;
+    const bool found = q.distance(pose, kInfinity, best);
+    ASSERT_TRUE(found);
+    EXPECT_NEAR(best.gap, expected, 1e-12 * (1.0 + expected));
+    EXPECT_NEAR(brute.gap(best.t_leaf, best.o_leaf, pose), best.gap, 1e-12 * (1.0 + expected));
+    EXPECT_EQ(q.intersects(pose), expected == 0.0);
+    expected > 0.0 ? ++apart : ++touching;
+    // A finite max_distance below the distance finds nothing.
+    if (expected > 0.0) {
+      GroupPairQuery fresh;
+      fresh.bind(target_, opponent_);
+      LeafContact none;
+      EXPECT_FALSE(fresh.distance(pose, 0.5 * expected, none));
+    }
+    // Contacts within a gap: exactly the pairs brute force finds.
+    const double threshold = expected + 0.05;
+    std::vector<LeafContact> contacts;
+    q.contacts(pose, threshold, contacts);
+    std::set<std::pair<int, int>> got, want;
+    for (const LeafContact& lc : contacts) got.insert({lc.t_leaf, lc.o_leaf});
+    for (int i = 0; i < q.targetLeafCount(); ++i)
+      for (int j = 0; j < q.opponentLeafCount(); ++j)
+        if (brute.gap(i, j, pose) <= threshold) want.insert({i, j});
+    EXPECT_EQ(got, want);
+    EXPECT_TRUE(
+        std::is_sorted(contacts.begin(), contacts.end(),
+                       [](const LeafContact& a, const LeafContact& b) { return a.gap < b.gap; }));
+    if (!want.empty()) ++with_contacts;
+  }
+  EXPECT_GT(apart, 6);
+  EXPECT_GT(touching, 3);
+  EXPECT_GT(with_contacts, 12);
+}
+
+TEST_F(GroupPairQueryTest, TranslationToiMatchesAdvancementOfAllLeafPairs) {
+  GroupPairQuery q;
+  q.bind(target_, opponent_);
+  const BruteForce brute(q);
+  test::Rng rng(7);
+  int cases = 0, equal = 0, blocked = 0;
+  const double stop_gap = 1e-3;
+  for (int c = 0; c < 20; ++c) {
+    SCOPED_TRACE(c);
+    const Rigid pose = randomPose(rng, 1.2);
+    if (brute.distance(pose) == 0.0) continue;
+    // Mostly towards the elephant's centre, so that many motions are blocked.
+    const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
+    const Vec3 delta = test::uniform(rng, 0.3, 1.5) * (centre - pose.translation) +
+                       0.2 * test::randomDirection(rng);
+    // Skip the pairs within 0.02, as the proxy tracker skips its contacts.
+    std::vector<LeafContact> near;
+    q.contacts(pose, 0.02, near);
+    std::vector<LeafPair> skip;
+    for (const LeafContact& lc : near) skip.push_back({lc.t_leaf, lc.o_leaf});
+    std::sort(skip.begin(), skip.end());
+    const double s = q.translationToi(pose, delta, stop_gap, skip);
+    const double expected = brute.toi(pose, delta, stop_gap, skip);
+    ++cases;
+    // Pruned pairs are those that cannot block: never more conservative than all
+    // pairs, and the same unless a pair's bounding spheres pass within stop_gap / 2.
+    EXPECT_GE(s, expected - 1e-9);
+    if (std::abs(s - expected) <= 1e-9) ++equal;
+    if (s < 1.0) ++blocked;
+    // Safe: at the end every pair not skipped keeps stop_gap / 2.
+    const Rigid end{pose.rotation, pose.translation + s * delta};
+    for (int i = 0; i < q.targetLeafCount(); ++i) {
+      for (int j = 0; j < q.opponentLeafCount(); ++j) {
+        if (std::binary_search(skip.begin(), skip.end(), LeafPair{i, j})) continue;
+        ASSERT_GE(brute.gap(i, j, end), 0.5 * stop_gap * (1 - 1e-6)) << i << " " << j;
+      }
+    }
+  }
+  EXPECT_GE(equal, cases - 1);
+  EXPECT_GT(blocked, 4);
+  EXPECT_LT(blocked, cases);
+  std::printf("[ group pair query ] toi: %d cases, %d equal to all pairs, %d blocked\n", cases,
+              equal, blocked);
+}
+
+TEST_F(GroupPairQueryTest, CoherenceSavesWorkButNotAccuracy) {
+  GroupPairQuery warm;
+  warm.bind(target_, opponent_);
+  const BruteForce brute(warm);
+  test::Rng rng(99);
+  Rigid pose = randomPose(rng, 0.7);
+  const Vec3 step = 2e-3 * test::randomDirection(rng);
+  const Mat3 turn = Eigen::AngleAxisd(2e-3, test::randomDirection(rng)).toRotationMatrix();
+  long warm_gjk = 0, cold_gjk = 0;
+  int shortcuts = 0;
+  for (int k = 0; k < 60; ++k) {
+    pose = Rigid{turn * pose.rotation, pose.translation + step};
+    LeafContact w, c;
+    const bool found_w = warm.distance(pose, kInfinity, w);
+    warm_gjk += warm.counters().node_gjk + warm.counters().leaf_gjk;
+    GroupPairQuery cold;
+    cold.bind(target_, opponent_);
+    const bool found_c = cold.distance(pose, kInfinity, c);
+    cold_gjk += cold.counters().node_gjk + cold.counters().leaf_gjk;
+    ASSERT_TRUE(found_w && found_c);
+    EXPECT_NEAR(w.gap, c.gap, 1e-12 * (1.0 + c.gap));
+    if (k % 10 == 0) {
+      EXPECT_NEAR(w.gap, brute.distance(pose), 1e-12 * (1.0 + c.gap));
+    }
+    // Right after distance(): contacts just below it are empty without traversal.
+    if (w.gap > 0.0) {
+      std::vector<LeafContact> out;
+      warm.contacts(pose, 0.5 * w.gap, out);
+      EXPECT_TRUE(out.empty());
+      shortcuts += warm.counters().shortcut ? 1 : 0;
+      EXPECT_FALSE(warm.intersects(pose));
+    }
+  }
+  std::printf("[ group pair query ] 60 coherent steps: GJK runs warm %ld, cold %ld; %d shortcuts\n",
+              warm_gjk, cold_gjk, shortcuts);
+  EXPECT_LT(warm_gjk, cold_gjk);
+  EXPECT_GT(shortcuts, 0);
+}
+
+TEST_F(GroupPairQueryTest, MovingAPartWithinItsGroupForgetsTheKnownDistance) {
+  GroupPairQuery q;
+  q.bind(target_, opponent_);
+  test::Rng rng(5);
+  Rigid pose;
+  LeafContact best;
+  do {
+    pose = randomPose(rng, 1.0);
+  } while (!q.distance(pose, kInfinity, best) || best.gap < 0.05);
+  // Move the box part right onto the elephant's closest point: the shortcut must
+  // not answer from the old distance.
+  const Leaf box = q.targetLeaf(100);
+  const Vec3 goal = pose.inverse() * best.point_o;  // in the target group frame
+  t_parts_[1].group_from_model.translation += goal - box.center;
+  q.bind(target_, opponent_);
+  EXPECT_TRUE(q.intersects(pose));
+  EXPECT_FALSE(q.counters().shortcut);
+}
+
+TEST(PairCache, KeepsEntriesAndStaysBounded) {
+  PairCache cache;
+  cache.at(7).count = 3;
+  EXPECT_EQ(cache.at(7).count, 3);
+  EXPECT_EQ(cache.at(8).count, 0);
+  for (std::uint64_t k = 0; k < 100000; ++k) cache.at(k * 7919).hint_a = static_cast<int>(k);
+  EXPECT_LE(cache.capacity(), PairCache::kMaxEntries);
+  // The most recent keys are still held.
+  for (std::uint64_t k = 99990; k < 100000; ++k)
+    EXPECT_EQ(cache.at(k * 7919).hint_a, static_cast<int>(k));
+  cache.clear();
+  EXPECT_EQ(cache.at(99999 * 7919).hint_a, 0);
+}
+
+}  // namespace
+}  // namespace sc::detail

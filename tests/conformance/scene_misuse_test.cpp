@@ -322,15 +322,20 @@ TEST(SceneMisuse, InvalidAttributeValuesAreInvalidArgument) {
   b.expectUnchanged();
 }
 
-TEST(SceneMisuse, FreeAndMixRotationModesAreNotAvailableYet) {
+TEST(SceneMisuse, EveryRotationModeIsAcceptedAndAnUnknownOneChangesNothing) {
   Baseline b;
-  EXPECT_EQ(b.manager.SetAttributeEnum(SC_SCENE_MANAGER_ROTATION_MODE, SC_ROTATION_MODE_FREE),
-            SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.SetAttributeEnum(SC_SCENE_MANAGER_ROTATION_MODE, SC_ROTATION_MODE_MIX),
+  for (SCenum m : {SC_ROTATION_MODE_NONE, SC_ROTATION_MODE_FREE, SC_ROTATION_MODE_MIX,
+                   SC_ROTATION_MODE_INPUT}) {
+    EXPECT_EQ(b.manager.SetAttributeEnum(SC_SCENE_MANAGER_ROTATION_MODE, m), SC_NO_ERROR);
+    SCenum mode = -1;
+    EXPECT_EQ(b.manager.GetAttributeEnum(SC_SCENE_MANAGER_ROTATION_MODE, &mode), SC_NO_ERROR);
+    EXPECT_EQ(mode, m);
+  }
+  EXPECT_EQ(b.manager.SetAttributeEnum(SC_SCENE_MANAGER_ROTATION_MODE, SC_FEATURE_VERTEX),
             SC_ERROR_INVALID_ARGUMENT);
   SCenum mode = -1;
   EXPECT_EQ(b.manager.GetAttributeEnum(SC_SCENE_MANAGER_ROTATION_MODE, &mode), SC_NO_ERROR);
-  EXPECT_EQ(mode, SC_ROTATION_MODE_INPUT);  // the default, kept
+  EXPECT_EQ(mode, SC_ROTATION_MODE_INPUT);  // the last valid one, kept
   b.expectUnchanged();
 }
 

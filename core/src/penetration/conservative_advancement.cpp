@@ -19,7 +19,7 @@ Rigid TwistMotion::at(double s) const {
 }
 
 double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap,
-               const std::vector<LeafPairId>& skip, std::vector<LeafContact>& scratch) {
+               const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch) {
   const double angle = motion.dtheta.norm();
   const Vec3 y0_local = motion.center;
   // Candidates: every pair within reach of the motion at its start.
@@ -31,7 +31,7 @@ double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap
   double limit = 1.0;
   for (const LeafContact& cand : scratch) {
     if (cand.intersecting) continue;
-    if (std::binary_search(skip.begin(), skip.end(), LeafPairId{cand.t_leaf, cand.o_leaf}))
+    if (std::binary_search(skip.begin(), skip.end(), LeafPair{cand.t_leaf, cand.o_leaf}))
       continue;
     const Leaf& leaf = query.targetLeaves()[cand.t_leaf];
     const double rho = (leaf.center - y0_local).norm() + leaf.radius;

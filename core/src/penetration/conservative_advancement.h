@@ -23,16 +23,6 @@ struct TwistMotion {
   Rigid at(double s) const;
 };
 
-/// A leaf pair to leave out of the advancement (it is handled elsewhere).
-struct LeafPairId {
-  int t_leaf;
-  int o_leaf;
-  bool operator<(const LeafPairId& o) const {
-    return t_leaf != o.t_leaf ? t_leaf < o.t_leaf : o_leaf < o.o_leaf;
-  }
-  bool operator==(const LeafPairId& o) const { return t_leaf == o.t_leaf && o_leaf == o.o_leaf; }
-};
-
 /// Largest s in [0, 1] such that along the motion every leaf pair not in `skip`
 /// (sorted) keeps a gap >= stop_gap / 2; when a pair blocks, it ends at a gap <=
 /// stop_gap. Pairs intersecting at s = 0 are ignored (nothing to advance from).
@@ -40,6 +30,6 @@ struct LeafPairId {
 /// max(0, -n . dc) + |dtheta| rho, rho bounding the leaf's distance to the centre.
 /// `scratch` is reused between calls.
 double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap,
-               const std::vector<LeafPairId>& skip, std::vector<LeafContact>& scratch);
+               const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch);
 
 }  // namespace sc::detail

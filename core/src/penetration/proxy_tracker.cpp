@@ -24,8 +24,8 @@ Vec3 ProxyTracker::seedNormal(GroupPairQuery& query, const LeafContact& c) const
   // separating direction at the previous (free) proxy is a good exit direction.
   const LeafContact before = query.pairAt(c.t_leaf, c.o_leaf, previous_proxy_);
   if (!before.intersecting) return before.normal;
-  const Vec3 t_center = previous_proxy_ * query.targetLeaves()[c.t_leaf].center;
-  return normalizedOr(t_center - query.opponentLeaves()[c.o_leaf].center, Vec3::UnitZ());
+  const Vec3 t_center = previous_proxy_ * query.targetLeaf(c.t_leaf).center;
+  return normalizedOr(t_center - query.opponentLeaf(c.o_leaf).center, Vec3::UnitZ());
 }
 
 void ProxyTracker::buildRows(GroupPairQuery& query, const Rigid& pose) {
@@ -41,7 +41,6 @@ void ProxyTracker::buildRows(GroupPairQuery& query, const Rigid& pose) {
 int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
                         const Vec3& center, const SceneSettings& settings) {
   const double skin = skinOf(settings);
-  const size_t no = query.opponentLeaves().size();
   Vec3 y = proxy_ * center;
   int k = 0;
   for (; k < settings.max_iterations; ++k) {
@@ -62,8 +61,9 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
     const Vec3 target = qp.z;
     const Vec3 delta = target - y;
     if (delta.norm() <= 1e-12 * (1.0 + y.norm())) break;
-    skip_.assign(query.targetLeaves().size() * no, 0);
-    for (const LeafContact& c : contacts_) skip_[c.t_leaf * no + c.o_leaf] = 1;
+    skip_.clear();
+    for (const LeafContact& c : contacts_) skip_.push_back({c.t_leaf, c.o_leaf});
+    std::sort(skip_.begin(), skip_.end());
     const double s = query.translationToi(pose, delta, skin, skip_);
     y = s >= 1.0 ? target : Vec3(y + s * delta);
     if (m == 0 && s >= 1.0) {  // reached the goal unobstructed
@@ -104,16 +104,9 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
     return;
   }
   previous_proxy_ = proxy_;
-  const Vec3 goal_center = goal * center;
-  const bool freeze = settings.rotation_mode == RotationMode::None && penetrating_;
-  const Mat3 rotation = freeze ? previous_proxy_.rotation : goal.rotation;
-  out.iterations = slide(query, rotation, goal_center, center, settings);
-  const bool reached = (proxy_ * center - goal_center).isZero(0.0) && rotation == goal.rotation;
-  if (!reached && settings.rotation_mode == RotationMode::None && !penetrating_) {
-    // Penetration began in this update: None keeps the orientation it had before.
-    proxy_ = previous_proxy_;
-    out.iterations += slide(query, previous_proxy_.rotation, goal_center, center, settings);
-  }
+  // A proxy stopped short of a goal that does not intersect (iterations ran out)
+  // must not report a depth: the goal itself is the free configuration.
+  const bool reached = follow(query, goal, center, settings, out) || !query.intersects(goal);
   if (reached || !reportPenetration(query, goal, center, settings, out)) {
     penetrating_ = false;
     proxy_ = goal;
@@ -121,6 +114,27 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
     return;
   }
   penetrating_ = true;
+}
+
+bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                          const SceneSettings& settings, ProxyOutcome& out) {
+  const RotationMode mode = settings.rotation_mode;
+  if (mode == RotationMode::Free || mode == RotationMode::Mix) {
+    out.iterations =
+        twistSlide(query, proxy_, goal, center, previous_proxy_, settings, skinOf(settings), twist_);
+    return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
+  }
+  const Vec3 goal_center = goal * center;
+  const bool freeze = mode == RotationMode::None && penetrating_;
+  const Mat3 rotation = freeze ? previous_proxy_.rotation : goal.rotation;
+  out.iterations = slide(query, rotation, goal_center, center, settings);
+  const bool reached = (proxy_ * center - goal_center).isZero(0.0) && rotation == goal.rotation;
+  if (!reached && mode == RotationMode::None && !penetrating_) {
+    // Penetration began in this update: None keeps the orientation it had before.
+    proxy_ = previous_proxy_;
+    out.iterations += slide(query, previous_proxy_.rotation, goal_center, center, settings);
+  }
+  return reached;
 }
 
 bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
@@ -160,9 +174,13 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
     if (main < 0 || (qp.feasible && qp.lambda[i] > qp.lambda[main])) main = i;
   if (main >= 0) {
     out.contact = contacts_[main];
-    out.contact.point_t += contact_center - y;
     out.contact.normal = rows_[main].normal;
+  } else {
+    // The proxy lags (iterations ran out) with nothing within the tolerance: its
+    // closest pair still names where the contact will be.
+    query.distance(proxy_, kInfinity, out.contact);
   }
+  out.contact.point_t += contact_center - y;
   return true;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "penetration/twist_slide.h"
 #include "query/group_pair_query.h"
 #include "smartcollision/settings.h"
 
@@ -24,10 +25,11 @@ struct ProxyOutcome {
   int iterations = 0;
 };
 
-/// Outline of one update (design.md section 4; translation-only modes):
+/// Outline of one update (design.md section 4):
 ///   1. First sight: intersecting -> InvalidInitialTransformation; else start here.
 ///   2. Orient the proxy: Input follows the goal's rotation; None keeps the rotation
-///      of the last pose before penetration began.
+///      of the last pose before penetration began; Free and Mix let the proxy turn
+///      (twistSlide: a 6-DOF version of step 3).
 ///   3. Up to max_iterations: collect contacts within the tolerance; solve the QP
 ///      "closest centre to the goal's centre, every contact's exact separating plane
 ///      kept at >= skin" (planes from support mappings are exact for convex leaves);
@@ -50,6 +52,9 @@ class ProxyTracker {
   };
   void reportApart(GroupPairQuery& query, const Rigid& goal, const SceneSettings& settings,
                    ProxyOutcome& out);
+  /// Steps 2-3 for this update's rotation mode; true when the proxy reached the goal.
+  bool follow(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+              const SceneSettings& settings, ProxyOutcome& out);
   /// Runs step 3 with the proxy rotation fixed to `rotation`; returns the iterations.
   int slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
             const Vec3& center, const SceneSettings& settings);
@@ -65,7 +70,8 @@ class ProxyTracker {
   Rigid previous_proxy_;  ///< proxy at the start of this update (free)
   std::vector<LeafContact> contacts_;
   std::vector<Row> rows_;
-  std::vector<std::uint8_t> skip_;
+  std::vector<LeafPair> skip_;  ///< the current contacts, sorted
+  TwistScratch twist_;          ///< Free and Mix work arrays
 };
 
 }  // namespace sc::detail

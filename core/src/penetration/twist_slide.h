@@ -16,7 +16,7 @@ struct TwistScratch {
   std::vector<LeafContact> contacts;
   std::vector<LeafContact> candidates;
   std::vector<ContactRow> rows;
-  std::vector<LeafPairId> skip;
+  std::vector<LeafPair> skip;
 };
 
 /// Weights (w_T, w_R) of 1/2 w_T |TPDV - dc|^2 + 1/2 w_R |RPDV - dtheta|^2.

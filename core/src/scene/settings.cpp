@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+// Range checks of SceneSettings (the first bad field is named).
 #include "smartcollision/settings.h"
 
 #include <cmath>
@@ -15,6 +16,9 @@ Status validate(const SceneSettings& s) {
       s.safety_coefficient >= 1.0)
     return bad("safety_coefficient must be in (0, 1)");
   if (s.max_iterations < 1) return bad("max_iterations must be >= 1");
+  if (s.threads < 0 || s.threads > kMaxThreads) return bad("threads must be in [0, 256]");
+  if (s.broadphase != Broadphase::Tree && s.broadphase != Broadphase::BruteForce)
+    return bad("unknown broadphase");
   if (!std::isfinite(s.force_stiffness) || s.force_stiffness <= 0.0)
     return bad("force_stiffness must be finite and > 0");
   if (!std::isfinite(s.torque_stiffness) || s.torque_stiffness <= 0.0)
@@ -22,11 +26,9 @@ Status validate(const SceneSettings& s) {
   switch (s.rotation_mode) {
     case RotationMode::None:
     case RotationMode::Input:
-      return {};
     case RotationMode::Free:
     case RotationMode::Mix:
-      return Status(ErrorCode::InvalidArgument,
-                    "rotation modes Free and Mix are not available yet (see docs/api.md)");
+      return {};
   }
   return bad("unknown rotation mode");
 }

@@ -104,9 +104,9 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
     return;
   }
   previous_proxy_ = proxy_;
-  // A proxy stopped short of a goal that does not intersect (iterations ran out)
-  // must not report a depth: the goal itself is the free configuration.
-  const bool reached = follow(query, goal, center, settings, out) || !query.intersects(goal);
+  // A proxy stopped short of a free goal still reports a depth: the goal was reached
+  // through the opponent (a thin wall), or the proxy lags and catches up later.
+  const bool reached = follow(query, goal, center, settings, out);
   if (reached || !reportPenetration(query, goal, center, settings, out)) {
     penetrating_ = false;
     proxy_ = goal;

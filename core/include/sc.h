@@ -67,6 +67,7 @@ inline constexpr SCenum SC_SCENE_MANAGER_ROTATION_MODE = 0x0505;       // enum
 inline constexpr SCenum SC_SCENE_MANAGER_FORCE_STIFFNESS = 0x0506;     // double
 inline constexpr SCenum SC_SCENE_MANAGER_TORQUE_STIFFNESS = 0x0507;    // double
 inline constexpr SCenum SC_SCENE_MANAGER_THREADS = 0x0508;             // integer; extension (0 = automatic)
+inline constexpr SCenum SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION = 0x0509;  // integer 0/1; extension
 
 // Rotation modes (manual 8.8).
 inline constexpr SCenum SC_ROTATION_MODE_NONE = 0x0601;

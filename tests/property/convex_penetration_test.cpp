@@ -7,47 +7,14 @@
 #include <cmath>
 #include <vector>
 
-#include "preprocess/convex_hull.h"
 #include "query/gjk.h"
 #include "smartcollision/collision.h"
+#include "support/brute_force.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
 namespace sc::test {
 namespace {
-
-struct ExactDepth {
-  double depth = kInfinity;  ///< distance from the origin to the hull boundary
-  Vec3 normal = Vec3::Zero();  ///< outward normal of the nearest facet
-  double runner_up = kInfinity;  ///< depth of the next facet with another normal
-};
-
-/// Global PD of A (at a_world) against B (at b_world): the origin's distance to the
-/// boundary of the hull of {a - b}, over every vertex pair.
-ExactDepth exactDepth(const ConvexShape& a, const Rigid& wa, const ConvexShape& b,
-                      const Rigid& wb) {
-  std::vector<Vec3> diff;
-  for (const Vec3& p : a.poly.vertices)
-    for (const Vec3& q : b.poly.vertices) diff.push_back(wa * p - wb * q);
-  const auto hull = detail::convexHull(diff);
-  ExactDepth out;
-  if (!hull.ok()) return out;
-  const auto& h = hull.value();
-  for (const Tri& f : h.faces) {
-    const Vec3 n = (h.vertices[f[1]] - h.vertices[f[0]]).cross(h.vertices[f[2]] - h.vertices[f[0]]);
-    if (n.norm() < 1e-300) continue;
-    const Vec3 u = n.normalized();
-    const double d = u.dot(h.vertices[f[0]]);
-    if (d < out.depth) {
-      if ((u - out.normal).norm() > 1e-9) out.runner_up = out.depth;
-      out.depth = d;
-      out.normal = u;
-    } else if (d < out.runner_up && (u - out.normal).norm() > 1e-9) {
-      out.runner_up = d;
-    }
-  }
-  return out;
-}
 
 ModelPtr modelOf(const ConvexShape& s) {
   auto piece = buildPiece(ModelKind::ClosedPolyhedron, meshOf(s.poly));
@@ -78,7 +45,7 @@ TEST(ConvexPenetration, ShallowEntryFindsTheGlobalDepth) {
     const Vec3 u = randomDirection(rng);
     double lo = 0.0, hi = 8.0 * size;  // lo: intersecting or not yet known, hi: apart
     auto depthAt = [&](double s) {
-      return exactDepth(a, placementOf(qa, ob + s * u).worldFromLocal(), b,
+      return exactPenetrationDepth(a.poly, placementOf(qa, ob + s * u).worldFromLocal(), b.poly,
                         placementOf(qb, ob).worldFromLocal());
     };
     // GJK only locates the contact; the truth below comes from the exact hull.

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "geometry/triangle_distance.h"
+#include "preprocess/convex_hull.h"
 
 namespace sc::test {
 namespace {
@@ -85,6 +86,31 @@ double pointFeatureDistance(const std::vector<Vec3>& points, const Feature& f, c
     }
   }
   return std::numeric_limits<double>::infinity();
+}
+
+ExactDepth exactPenetrationDepth(const detail::ConvexPolytope& a, const Rigid& wa,
+                                 const detail::ConvexPolytope& b, const Rigid& wb) {
+  std::vector<Vec3> diff;
+  for (const Vec3& p : a.vertices)
+    for (const Vec3& q : b.vertices) diff.push_back(wa * p - wb * q);
+  const auto hull = detail::convexHull(diff);
+  ExactDepth out;
+  if (!hull.ok()) return out;
+  const auto& h = hull.value();
+  for (const Tri& f : h.faces) {
+    const Vec3 n = (h.vertices[f[1]] - h.vertices[f[0]]).cross(h.vertices[f[2]] - h.vertices[f[0]]);
+    if (n.norm() < 1e-300) continue;
+    const Vec3 u = n.normalized();
+    const double d = u.dot(h.vertices[f[0]]);
+    if (d < out.depth) {
+      if ((u - out.normal).norm() > 1e-9) out.runner_up = out.depth;
+      out.depth = d;
+      out.normal = u;
+    } else if (d < out.runner_up && (u - out.normal).norm() > 1e-9) {
+      out.runner_up = d;
+    }
+  }
+  return out;
 }
 
 }  // namespace sc::test

@@ -33,4 +33,15 @@ bool pointInConvexPolytope(const detail::ConvexPolytope& poly, const Vec3& p, do
 /// indices refer to `points`.
 double pointFeatureDistance(const std::vector<Vec3>& points, const Feature& feature, const Vec3& p);
 
+/// Exact global penetration depth of two placed convex polytopes.
+struct ExactDepth {
+  double depth = kInfinity;      ///< distance from the origin to the hull boundary
+  Vec3 normal = Vec3::Zero();    ///< outward normal of the nearest facet
+  double runner_up = kInfinity;  ///< depth of the next facet with another normal
+};
+/// The origin's distance to the boundary of the hull of {wa a - wb b} over every
+/// vertex pair (qhull): translating A by depth * normal makes them touch.
+ExactDepth exactPenetrationDepth(const detail::ConvexPolytope& a, const Rigid& wa,
+                                 const detail::ConvexPolytope& b, const Rigid& wb);
+
 }  // namespace sc::test

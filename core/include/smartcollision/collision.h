@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "smartcollision/model.h"
 #include "smartcollision/placement.h"
@@ -39,6 +40,20 @@ struct DirectedResult {
   Quat contact_orientation = Quat::Identity();  ///< T's orientation at contact
 
   bool penetrating() const { return code == ErrorCode::Ok && distance <= 0.0; }
+};
+
+/// One contact of a direction (extension, for multi-point consumers such as
+/// Bullet's manifolds): a leaf pair within the margin at the contact configuration,
+/// its target point carried to the target's current pose. World coordinates.
+struct ContactPoint {
+  Vec3 point_on_target = Vec3::Zero();    ///< on T at its current pose
+  Vec3 point_on_opponent = Vec3::Zero();
+  Vec3 normal = Vec3::UnitX();            ///< unit, from O towards T
+  double separation = 0.0;                ///< along normal at the current pose; < 0 penetrating
+  int target_object = -1;
+  int opponent_object = -1;
+  int target_piece = -1;
+  int opponent_piece = -1;
 };
 
 /// A model placed in a group's local frame. `id` is reported back in results.
@@ -79,6 +94,14 @@ class SC_API PairTracker {
   /// Allocates only while the pair's working sets grow.
   void update(const GroupView& a, const GroupView& b, Directions directions,
               const SceneSettings& settings, DirectedResult out[2]);
+
+  /// Every contact of direction 0 or 1 of the last update: leaf pairs within
+  /// `margin` (>= 0) of each other at the reported contact configuration (the
+  /// closest points when apart), nearest first; empty when the direction reported
+  /// no Ok result. Leaf pairs still overlapping by more than half the tolerance at
+  /// the contact configuration (a lagging proxy) are left out. Call it after
+  /// update(), before the groups' parts change.
+  void contactPoints(int direction, double margin, std::vector<ContactPoint>& out);
 
   /// Drops the tracking state of direction 0 (a target) or 1 (b target).
   void forget(int direction);

@@ -41,6 +41,10 @@ struct SceneSettings {
   /// bit and in the same order, for any count.
   int threads = 0;
   Broadphase broadphase = Broadphase::Tree;
+  /// A direction first seen intersecting starts from a nearby free pose found by EPA
+  /// on its intersecting convex leaves (and reports that depth) instead of reporting
+  /// InvalidInitialTransformation. Off by default, as in the manual.
+  bool resolve_initial_intersection = false;
 };
 
 /// Ok, or InvalidArgument naming the first field out of range.

@@ -283,6 +283,11 @@ SCint SCSceneManager::SetAttributeDouble(SCenum attribute, SCdouble value) {
 
 SCint SCSceneManager::SetAttributeInteger(SCenum attribute, SCint value) {
   sc::SceneSettings s = impl_->scene.settings();
+  if (attribute == SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION) {
+    if (value != 0 && value != 1) return SC_ERROR_INVALID_ARGUMENT;
+    s.resolve_initial_intersection = value == 1;
+    return toScCode(impl_->scene.setSettings(s));
+  }
   int* field = intField(s, attribute);
   if (field == nullptr) return SC_ERROR_INVALID_ARGUMENT;
   *field = value;
@@ -306,6 +311,10 @@ SCint SCSceneManager::GetAttributeDouble(SCenum attribute, SCdouble* value) cons
 
 SCint SCSceneManager::GetAttributeInteger(SCenum attribute, SCint* value) const {
   sc::SceneSettings s = impl_->scene.settings();
+  if (attribute == SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION && value != nullptr) {
+    *value = s.resolve_initial_intersection ? 1 : 0;
+    return SC_NO_ERROR;
+  }
   const int* field = intField(s, attribute);
   if (field == nullptr || value == nullptr) return SC_ERROR_INVALID_ARGUMENT;
   *value = *field;

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // sc::PairTracker: two directed proxy trackers over the pair's leaf queries, and
 // the conversion of their outcomes to world-frame DirectedResults.
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/math_util.h"
+#include "penetration/initial_resolution.h"
 #include "penetration/proxy_tracker.h"
 #include "query/features.h"
 #include "smartcollision/collision.h"
@@ -15,6 +17,14 @@ namespace detail {
 struct PairState {
   GroupPairQuery query[2];
   ProxyTracker tracker[2];
+  ResolutionScratch resolution;
+  // The last update per direction, for contactPoints().
+  ProxyOutcome last[2];
+  Rigid goal[2];
+  GroupView target[2];
+  GroupView opponent[2];
+  double tolerance[2] = {0.0, 0.0};
+  std::vector<LeafContact> leaf_contacts;
 };
 
 namespace {
@@ -62,8 +72,45 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   const Rigid goal =
       opponent.placement.worldFromLocal().inverse() * target.placement.worldFromLocal();
   ProxyOutcome outcome;
-  state.tracker[dir].update(query, goal, target.placement.local_center, settings, outcome);
+  ProxyTracker& tracker = state.tracker[dir];
+  const Vec3& center = target.placement.local_center;
+  tracker.update(query, goal, center, settings, outcome);
+  Rigid free_pose;
+  if (outcome.code == ErrorCode::InvalidInitialTransformation &&
+      settings.resolve_initial_intersection &&
+      resolveInitialIntersection(query, goal, settings, free_pose, state.resolution)) {
+    // Start tracking at the free pose, then move to the goal as on any later frame.
+    tracker.update(query, free_pose, center, settings, outcome);
+    tracker.update(query, goal, center, settings, outcome);
+  }
   toWorld(outcome, target, opponent, query, out);
+  state.last[dir] = outcome;
+  state.goal[dir] = goal;
+  state.target[dir] = target;
+  state.opponent[dir] = opponent;
+  state.tolerance[dir] = settings.tolerance;
+}
+
+/// `c` measured at the contact pose moved out by `lift` along the result's normal.
+ContactPoint contactPointOf(const PairState& state, int dir, const GroupPairQuery& query,
+                            const LeafContact& c, double lift) {
+  const ProxyOutcome& o = state.last[dir];
+  const Rigid world_from_o = state.opponent[dir].placement.worldFromLocal();
+  const Vec3& n = c.normal;
+  const Vec3 t_contact = c.point_t - lift * o.contact.normal;
+  const Vec3 t_now = state.goal[dir] * (o.contact_pose.inverse() * t_contact);
+  const Leaf lt = query.targetLeaf(c.t_leaf);
+  const Leaf lo = query.opponentLeaf(c.o_leaf);
+  ContactPoint p;
+  p.point_on_target = world_from_o * t_now;
+  p.point_on_opponent = world_from_o * c.point_o;
+  p.normal = normalizedOr(world_from_o.rotation * n, Vec3::UnitZ());
+  p.separation = n.dot(t_now - c.point_o);
+  p.target_object = state.target[dir].parts[lt.part].id;
+  p.opponent_object = state.opponent[dir].parts[lo.part].id;
+  p.target_piece = lt.piece;
+  p.opponent_piece = lo.piece;
+  return p;
 }
 
 }  // namespace
@@ -78,8 +125,29 @@ void PairTracker::update(const GroupView& a, const GroupView& b, Directions dire
                          const SceneSettings& settings, DirectedResult out[2]) {
   out[0] = DirectedResult();
   out[1] = DirectedResult();
+  state_->last[0] = state_->last[1] = detail::ProxyOutcome();
   if (directions.a_target) detail::runDirection(*state_, 0, a, b, settings, out[0]);
   if (directions.b_target) detail::runDirection(*state_, 1, b, a, settings, out[1]);
+}
+
+void PairTracker::contactPoints(int direction, double margin, std::vector<ContactPoint>& out) {
+  out.clear();
+  const int dir = direction & 1;
+  detail::PairState& s = *state_;
+  const detail::ProxyOutcome& o = s.last[dir];
+  if (o.code != ErrorCode::Ok || !(margin >= 0.0)) return;
+  // Leaves touching at the contact pose have no closest points: measure them lifted
+  // off by half the tolerance along the normal. Apart, the closest pair counts even
+  // beyond the margin, so a consumer always has the point the result names.
+  const double lift = o.penetrating ? 0.5 * s.tolerance[dir] : 0.0;
+  Rigid probe = o.contact_pose;
+  probe.translation += lift * o.contact.normal;
+  const double threshold = std::max(margin, o.penetrating ? 0.0 : o.distance) + lift;
+  s.query[dir].contacts(probe, threshold, s.leaf_contacts);
+  for (const detail::LeafContact& c : s.leaf_contacts) {
+    if (c.intersecting) continue;  // deeper than the lift: a lagging proxy; skipped
+    out.push_back(detail::contactPointOf(s, dir, s.query[dir], c, lift));
+  }
 }
 
 void PairTracker::forget(int direction) { state_->tracker[direction & 1].forget(); }

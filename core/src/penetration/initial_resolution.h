@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+// A free pose near a pose where the pair already intersects (extension: resolve a pair
+// first seen intersecting instead of reporting InvalidInitialTransformation).
+#pragma once
+
+#include <vector>
+
+#include "query/group_pair_query.h"
+#include "smartcollision/settings.h"
+
+namespace sc::detail {
+
+/// Work arrays kept between calls.
+struct ResolutionScratch {
+  std::vector<LeafContact> contacts;
+  std::vector<Vec3> normals;   ///< one row per intersecting leaf pair met so far
+  std::vector<double> offsets;  ///< row: normal . t >= offset, t the total translation
+};
+
+/// Outline: the intersecting leaf pairs at `goal` each give a global exit (EPA on the
+/// two convex leaves: direction n, depth d), a half-space n . t >= d + skin on the
+/// target's translation t. The smallest t satisfying every half-space met so far is
+/// tried; pairs it brings into intersection add their own half-spaces. Translation
+/// only: the orientation is the input's, as in Input mode.
+/// @return true with `free_pose` = goal translated by t, a pose where no leaf pair
+///   intersects; false when no free pose was found within `max_rounds`.
+bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
+                                const SceneSettings& settings, Rigid& free_pose,
+                                ResolutionScratch& scratch, int max_rounds = 32);
+
+}  // namespace sc::detail

@@ -68,6 +68,7 @@ inline constexpr SCenum SC_SCENE_MANAGER_FORCE_STIFFNESS = 0x0506;     // double
 inline constexpr SCenum SC_SCENE_MANAGER_TORQUE_STIFFNESS = 0x0507;    // double
 inline constexpr SCenum SC_SCENE_MANAGER_THREADS = 0x0508;             // integer; extension (0 = automatic)
 inline constexpr SCenum SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION = 0x0509;  // integer 0/1; extension
+inline constexpr SCenum SC_SCENE_MANAGER_CONTACT_POINTS = 0x050A;  // integer 0/1; extension
 
 // Rotation modes (manual 8.8).
 inline constexpr SCenum SC_ROTATION_MODE_NONE = 0x0601;
@@ -95,6 +96,10 @@ inline constexpr SCenum SC_RPD_VECTOR = 0x070E;         // 3 reals
 inline constexpr SCenum SC_RPD_VECOTR = SC_RPD_VECTOR;
 inline constexpr SCenum SC_CONTACT_POSITION = 0x070F;   // 3 reals
 inline constexpr SCenum SC_CONTACT_ORIENTATION = 0x0710;  // 4 reals {s, vx, vy, vz}
+// Extensions (with SC_SCENE_MANAGER_CONTACT_POINTS = 1): every contact of a result.
+inline constexpr SCenum SC_CONTACT_POINT_COUNT = 0x0711;  // 1 int
+inline constexpr SCenum SC_CONTACT_POINTS = 0x0712;  // 10 reals per contact: point on target,
+                                                     // point on opponent, normal, separation
 
 // Feature types.
 inline constexpr SCenum SC_FEATURE_VERTEX = 0x0801;

@@ -19,6 +19,9 @@ inline constexpr int kStaticGroup = -1;
 struct PairStatus {
   int groups[2] = {kStaticGroup, kStaticGroup};
   DirectedResult results[2];
+  /// With SceneSettings::contact_points: PairTracker::contactPoints of each direction
+  /// (margin = the tolerance); empty otherwise.
+  std::vector<ContactPoint> contacts[2];
 };
 
 class SC_API Scene {

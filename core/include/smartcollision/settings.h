@@ -45,6 +45,10 @@ struct SceneSettings {
   /// on its intersecting convex leaves (and reports that depth) instead of reporting
   /// InvalidInitialTransformation. Off by default, as in the manual.
   bool resolve_initial_intersection = false;
+  /// The scene also lists every contact within the tolerance of each result
+  /// (PairStatus::contacts), for multi-point consumers. Off by default: it costs a
+  /// second traversal per direction.
+  bool contact_points = false;
 };
 
 /// Ok, or InvalidArgument naming the first field out of range.

@@ -74,6 +74,15 @@ int* intField(sc::SceneSettings& s, SCenum attribute) {
   }
 }
 
+/// The on/off attribute field (integer 0 or 1 in sc.h), or null if `attribute` is not one.
+bool* boolField(sc::SceneSettings& s, SCenum attribute) {
+  switch (attribute) {
+    case SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION: return &s.resolve_initial_intersection;
+    case SC_SCENE_MANAGER_CONTACT_POINTS: return &s.contact_points;
+    default: return nullptr;
+  }
+}
+
 SCenum featureType(sc::FeatureType t) {
   switch (t) {
     case sc::FeatureType::Vertex: return SC_FEATURE_VERTEX;
@@ -98,6 +107,9 @@ SCint intStatus(const sc::PairStatus& pair, int d, SCenum type, SCint* out) {
     case SC_GROUP_ID:
       out[0] = pair.groups[d];
       out[1] = pair.groups[1 - d];
+      return SC_NO_ERROR;
+    case SC_CONTACT_POINT_COUNT:
+      out[0] = static_cast<SCint>(pair.contacts[d].size());
       return SC_NO_ERROR;
     case SC_OBJECT_ID:
     case SC_PIECE_ID:
@@ -130,9 +142,24 @@ SCint intStatus(const sc::PairStatus& pair, int d, SCenum type, SCint* out) {
   return SC_NO_ERROR;
 }
 
+/// SC_CONTACT_POINTS: 10 reals per contact.
+template <class Real>
+SCint contactPointsStatus(const std::vector<sc::ContactPoint>& points, Real* out) {
+  for (const sc::ContactPoint& p : points) {
+    write(p.point_on_target, out);
+    write(p.point_on_opponent, out + 3);
+    write(p.normal, out + 6);
+    out[9] = static_cast<Real>(p.separation);
+    out += 10;
+  }
+  return SC_NO_ERROR;
+}
+
 /// GetStatus for the real-valued types.
 template <class Real>
-SCint realStatus(const sc::DirectedResult& r, SCenum type, Real* out) {
+SCint realStatus(const sc::PairStatus& pair, int d, SCenum type, Real* out) {
+  const sc::DirectedResult& r = pair.results[d];
+  if (type == SC_CONTACT_POINTS) return contactPointsStatus(pair.contacts[d], out);
   switch (type) {
     case SC_DISTANCE:
     case SC_CONTACT_NORMAL:
@@ -283,9 +310,9 @@ SCint SCSceneManager::SetAttributeDouble(SCenum attribute, SCdouble value) {
 
 SCint SCSceneManager::SetAttributeInteger(SCenum attribute, SCint value) {
   sc::SceneSettings s = impl_->scene.settings();
-  if (attribute == SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION) {
+  if (bool* flag = boolField(s, attribute)) {
     if (value != 0 && value != 1) return SC_ERROR_INVALID_ARGUMENT;
-    s.resolve_initial_intersection = value == 1;
+    *flag = value == 1;
     return toScCode(impl_->scene.setSettings(s));
   }
   int* field = intField(s, attribute);
@@ -311,8 +338,8 @@ SCint SCSceneManager::GetAttributeDouble(SCenum attribute, SCdouble* value) cons
 
 SCint SCSceneManager::GetAttributeInteger(SCenum attribute, SCint* value) const {
   sc::SceneSettings s = impl_->scene.settings();
-  if (attribute == SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION && value != nullptr) {
-    *value = s.resolve_initial_intersection ? 1 : 0;
+  if (const bool* flag = boolField(s, attribute); flag != nullptr && value != nullptr) {
+    *value = *flag ? 1 : 0;
     return SC_NO_ERROR;
   }
   const int* field = intField(s, attribute);
@@ -354,12 +381,12 @@ SCint SCSceneManager::GetStatus(SCenum type, SCfloat* value, SCint index, SCbool
   const auto& pairs = impl_->scene.pairs();
   if (value == nullptr || index < 0 || index >= static_cast<SCint>(pairs.size()))
     return SC_ERROR_INVALID_ARGUMENT;
-  return realStatus(pairs[index].results[reverseFlag ? 1 : 0], type, value);
+  return realStatus(pairs[index], reverseFlag ? 1 : 0, type, value);
 }
 
 SCint SCSceneManager::GetStatus(SCenum type, SCdouble* value, SCint index, SCbool reverseFlag) {
   const auto& pairs = impl_->scene.pairs();
   if (value == nullptr || index < 0 || index >= static_cast<SCint>(pairs.size()))
     return SC_ERROR_INVALID_ARGUMENT;
-  return realStatus(pairs[index].results[reverseFlag ? 1 : 0], type, value);
+  return realStatus(pairs[index], reverseFlag ? 1 : 0, type, value);
 }

@@ -7,6 +7,7 @@
 #include "geometry/math_util.h"
 #include "penetration/initial_resolution.h"
 #include "penetration/proxy_tracker.h"
+#include "penetration/result_invariants.h"
 #include "query/features.h"
 #include "smartcollision/collision.h"
 
@@ -84,6 +85,8 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
     tracker.update(query, goal, center, settings, outcome);
   }
   toWorld(outcome, target, opponent, query, out);
+  // Debug builds: a result breaking its contract aborts here, at its source.
+  enforceResultInvariants(out, target.placement, opponent.placement);
   state.last[dir] = outcome;
   state.goal[dir] = goal;
   state.target[dir] = target;

@@ -372,6 +372,12 @@ struct Scene::Impl {
     status.groups[0] = job.first->id;
     status.groups[1] = job.second->id;
     tracker.update(viewOf(*job.first), viewOf(*job.second), job.dirs, settings, status.results);
+    for (int d = 0; d < 2; ++d) {
+      if (settings.contact_points)
+        tracker.contactPoints(d, settings.tolerance, status.contacts[d]);
+      else
+        status.contacts[d].clear();
+    }
     // Directions not computed keep their state only if their target sleeps.
     if (!job.dirs.a_target && job.first->activity != Activity::Sleeping) tracker.forget(0);
     if (!job.dirs.b_target && job.second->activity != Activity::Sleeping) tracker.forget(1);

@@ -1,0 +1,731 @@
+// SPDX-License-Identifier: MIT
+// Dynamic penetration depth (issue 4): update time of two >= 10k-triangle models under
+// haptic-like motion, and speed against accuracy on convex pairs next to libccd's EPA
+// and MPR and Bullet's GJK-EPA. Writes CSVs with --csv-dir=<dir>.
+#include <benchmark/benchmark.h>
+
+#include <time.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "off_mesh.h"
+#include "smartcollision/smartcollision.h"
+
+#if SC_BENCH_HAVE_CCD
+#include <ccd/ccd.h>
+#endif
+#if SC_BENCH_HAVE_BULLET
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
+#endif
+
+namespace {
+
+using sc::Quat;
+using sc::Vec3;
+using Clock = std::chrono::steady_clock;
+
+double seconds(Clock::time_point t0, Clock::time_point t1) {
+  return std::chrono::duration<double>(t1 - t0).count();
+}
+
+/// CPU time of this thread: what an update costs, whatever else the machine runs.
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  const size_t i = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())));
+  return v[i];
+}
+
+Quat randomRotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  return Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
+}
+
+Vec3 randomDirection(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  return Vec3(n(rng), n(rng), n(rng)).normalized();
+}
+
+sc::ModelPtr closedModel(const sc::MeshData& mesh) {
+  auto piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, mesh);
+  if (!piece.hasValue()) {
+    std::fprintf(stderr, "bench: mesh rejected: %s\n", piece.status().message().c_str());
+    return nullptr;
+  }
+  return std::make_shared<const sc::Model>(sc::ModelKind::ClosedPolyhedron,
+                                           std::vector<sc::PiecePtr>{piece.value()});
+}
+
+sc::DirectedResult updateOneWay(sc::PairTracker& tracker, const sc::Part& target_part,
+                                const sc::Placement& target, const sc::Part& opponent_part,
+                                const sc::Placement& opponent, const sc::SceneSettings& settings) {
+  const sc::GroupView a{&target_part, 1, target};
+  const sc::GroupView b{&opponent_part, 1, opponent};
+  sc::DirectedResult out[2];
+  tracker.update(a, b, sc::Directions{true, false}, settings, out);
+  return out[0];
+}
+
+// ---------------------------------------------------------------------------------
+// Haptic-like motion between two large meshes.
+
+constexpr int kHapticSteps = 2000;
+const char* const kHapticPairs[][2] = {{"fandisk", "armadillo"}, {"fandisk", "bunny00"}};
+
+struct HapticRow {
+  std::string pair, mode;
+  int steps = 0, penetrating = 0, not_ok = 0;
+  double median_us = 0, p99_us = 0, max_us = 0, cpu_median_us = 0, cpu_p99_us = 0, cpu_max_us = 0;
+  double max_step = 0, delta_max = 0, max_tpdv = 0, max_tpdv_jump = 0;
+};
+std::vector<HapticRow> g_haptic;
+/// Per step of the first pair in INPUT mode: step, wall us, cpu us, |tpdv|.
+std::vector<std::array<double, 4>> g_haptic_steps;
+
+struct LoadedMesh {
+  sc::MeshData mesh;
+  sc::ModelPtr model;
+  double radius = 0.0;
+};
+
+const LoadedMesh* loadMesh(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<LoadedMesh>> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second.get();
+  std::unique_ptr<LoadedMesh> l;
+  sc::MeshData raw = sc_bench::loadOff(name);
+  if (!raw.triangles.empty()) {
+    l = std::make_unique<LoadedMesh>();
+    l->mesh = sc_bench::unitSize(std::move(raw));
+    l->model = closedModel(l->mesh);
+    for (const Vec3& v : l->mesh.vertices) l->radius = std::max(l->radius, v.norm());
+    if (!l->model) l.reset();
+  }
+  return (cache[name] = std::move(l)).get();
+}
+
+/// The target approaches the fixed opponent from 0.02 away, penetrates 0.015 to 0.045
+/// deep along the approach (unit-size models) while it circles sideways and rocks,
+/// and withdraws at the end.
+std::vector<sc::Placement> hapticPath(const LoadedMesh& mesh_a, const LoadedMesh& mesh_b,
+                                      const sc::Part& part_a, const sc::Part& part_b,
+                                      const sc::SceneSettings& settings, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  const Quat q0 = randomRotation(rng);
+  const Vec3 u = randomDirection(rng);
+  const Vec3 e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+  const Vec3 body_axis = randomDirection(rng);
+  const auto placementAt = [&](double s, const Vec3& lateral, const Quat& q) {
+    sc::Placement p;
+    p.orientation = q;
+    p.world_center = s * u + lateral;
+    return p;
+  };
+  // Touching offset along u: slide in from far by the distance (1-Lipschitz, so a
+  // step of d - gap never reaches contact).
+  double s_touch = mesh_a.radius + mesh_b.radius;
+  for (int k = 0; k < 40; ++k) {
+    sc::PairTracker probe;
+    const sc::DirectedResult r = updateOneWay(probe, part_a, placementAt(s_touch, Vec3::Zero(), q0),
+                                              part_b, sc::Placement(), settings);
+    if (r.code != sc::ErrorCode::Ok || r.distance < 2e-5) break;
+    s_touch -= r.distance - 1e-5;
+  }
+  std::vector<sc::Placement> path;
+  double depth_end = 0.0;
+  for (int k = 0; k < kHapticSteps; ++k) {
+    const double phase = static_cast<double>(k - 100);
+    double depth = 0.03 + 0.015 * std::sin(2.0 * M_PI * phase / 300.0);
+    if (k < 100) depth = -0.02 + 0.05 * k / 100.0;
+    if (k == kHapticSteps - 100) depth_end = depth;
+    if (k >= kHapticSteps - 100)
+      depth = depth_end - (depth_end + 0.02) * (k - (kHapticSteps - 100)) / 99.0;
+    const double angle = 2.0 * M_PI * std::max(0.0, phase) / 500.0;
+    const Vec3 lateral = 0.03 * ((std::cos(angle) - 1.0) * e1 + std::sin(angle) * e2);
+    const Quat q = Quat(Eigen::AngleAxisd(0.05 * std::sin(2.0 * M_PI * k / 700.0), body_axis)) * q0;
+    path.push_back(placementAt(s_touch - depth, lateral, q));
+  }
+  return path;
+}
+
+/// Update time along the haptic path of a pair. Every step moves a point of the target
+/// by about 1e-3: a hand at 0.1 m/s on a 10 cm tool in a 1 kHz loop, an order below
+/// delta_max of the defaults.
+void BM_HapticPath(benchmark::State& state) {
+  const int index = static_cast<int>(state.range(0));
+  const auto mode = static_cast<sc::RotationMode>(state.range(1));
+  const LoadedMesh* la = loadMesh(kHapticPairs[index][0]);
+  const LoadedMesh* lb = loadMesh(kHapticPairs[index][1]);
+  if (!la || !lb) {
+    state.SkipWithError("meshes not found");
+    return;
+  }
+  const sc::Part part_a{la->model.get(), sc::Rigid(), 0}, part_b{lb->model.get(), sc::Rigid(), 1};
+  sc::SceneSettings settings;
+  settings.rotation_mode = mode;
+  const sc::Placement opponent;
+  // A seed whose path intersects at most probes of its penetrating part (a contact
+  // on a thin feature, an ear, would be left by the sideways motion).
+  std::vector<sc::Placement> path;
+  for (unsigned attempt = 0; attempt < 8; ++attempt) {
+    path = hapticPath(*la, *lb, part_a, part_b, settings,
+                      77 + 10 * static_cast<unsigned>(index) + attempt);
+    int intersecting = 0;
+    for (int k = 150; k < kHapticSteps - 100; k += 200) {
+      sc::PairTracker probe;
+      const sc::DirectedResult r =
+          updateOneWay(probe, part_a, path[k], part_b, sc::Placement(), settings);
+      if (r.code == sc::ErrorCode::InvalidInitialTransformation || r.penetrating()) ++intersecting;
+    }
+    if (intersecting >= 8) break;
+  }
+  double max_step = 0.0;
+  for (size_t k = 1; k < path.size(); ++k) {
+    for (const Vec3& v : la->mesh.vertices) {
+      const Vec3 before = path[k - 1].worldFromLocal() * v, after = path[k].worldFromLocal() * v;
+      max_step = std::max(max_step, (after - before).norm());
+    }
+  }
+
+  HapticRow row;
+  row.pair = std::string(kHapticPairs[index][0]) + "-" + kHapticPairs[index][1];
+  const char* const mode_names[] = {"none", "input", "free", "mix"};
+  row.mode = mode_names[static_cast<int>(mode)];
+  row.steps = kHapticSteps;
+  row.max_step = max_step;
+  row.delta_max = settings.safety_coefficient * settings.tolerance * settings.max_iterations;
+  std::vector<double> wall, cpu;
+  const bool keep_steps = index == 0 && mode == sc::RotationMode::Input;
+  for (auto _ : state) {
+    sc::PairTracker tracker;
+    Vec3 previous_tpdv = Vec3::Zero();
+    for (int k = 0; k < kHapticSteps; ++k) {
+      const double c0 = threadCpuSeconds();
+      const auto t0 = Clock::now();
+      const sc::DirectedResult r =
+          updateOneWay(tracker, part_a, path[k], part_b, opponent, settings);
+      const auto t1 = Clock::now();
+      const double c1 = threadCpuSeconds();
+      wall.push_back(seconds(t0, t1));
+      cpu.push_back(c1 - c0);
+      if (r.code != sc::ErrorCode::Ok) ++row.not_ok;
+      if (r.penetrating()) ++row.penetrating;
+      row.max_tpdv_jump = std::max(row.max_tpdv_jump, (r.tpdv - previous_tpdv).norm());
+      previous_tpdv = r.tpdv;
+      row.max_tpdv = std::max(row.max_tpdv, r.tpdv.norm());
+      if (keep_steps)
+        g_haptic_steps.push_back({double(k), 1e6 * wall.back(), 1e6 * cpu.back(), r.tpdv.norm()});
+    }
+    double total = 0.0;
+    for (double t : wall) total += t;
+    state.SetIterationTime(total);
+  }
+  row.median_us = 1e6 * quantile(wall, 0.5);
+  row.p99_us = 1e6 * quantile(wall, 0.99);
+  row.max_us = 1e6 * quantile(wall, 1.0);
+  row.cpu_median_us = 1e6 * quantile(cpu, 0.5);
+  row.cpu_p99_us = 1e6 * quantile(cpu, 0.99);
+  row.cpu_max_us = 1e6 * quantile(cpu, 1.0);
+  state.counters["penetrating"] = row.penetrating;
+  state.counters["median_us"] = row.median_us;
+  state.counters["p99_us"] = row.p99_us;
+  state.counters["cpu_p99_us"] = row.cpu_p99_us;
+  state.counters["max_step"] = row.max_step;
+  state.counters["delta_max"] = row.delta_max;
+  state.counters["max_tpdv"] = row.max_tpdv;
+  state.counters["max_tpdv_jump"] = row.max_tpdv_jump;
+  g_haptic.push_back(row);
+}
+
+// ---------------------------------------------------------------------------------
+// Convex pairs: speed against accuracy.
+
+/// A convex polytope: local vertices, the directions its faces face and its edges run
+/// along (the candidate separating axes), and a closed triangulation for our models.
+struct Convex {
+  std::vector<Vec3> vertices;
+  std::vector<Vec3> face_normals;
+  std::vector<Vec3> edge_directions;
+  sc::MeshData mesh;
+  Vec3 centre = Vec3::Zero();  ///< mean of the vertices: inside, for MPR
+};
+
+Convex box(const Vec3& h) {
+  Convex c;
+  for (int i = 0; i < 8; ++i)
+    c.vertices.emplace_back((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(),
+                            (i & 4) ? h.z() : -h.z());
+  c.face_normals = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  c.edge_directions = c.face_normals;
+  c.mesh.vertices = c.vertices;
+  c.mesh.triangles = {sc::Tri(0, 2, 3), sc::Tri(0, 3, 1), sc::Tri(4, 5, 7), sc::Tri(4, 7, 6),
+                      sc::Tri(0, 1, 5), sc::Tri(0, 5, 4), sc::Tri(2, 6, 7), sc::Tri(2, 7, 3),
+                      sc::Tri(0, 4, 6), sc::Tri(0, 6, 2), sc::Tri(1, 3, 7), sc::Tri(1, 7, 5)};
+  return c;
+}
+
+/// Hull of n random points on an ellipsoid, by brute force over all triples (points
+/// in general position, so every facet is a triangle).
+Convex randomHull(std::mt19937_64& rng, int n) {
+  std::uniform_real_distribution<double> axis(0.3, 1.0);
+  const Vec3 radii(axis(rng), axis(rng), axis(rng));
+  std::vector<Vec3> points;
+  for (int i = 0; i < n; ++i) points.push_back(randomDirection(rng).cwiseProduct(radii));
+  std::vector<sc::Tri> facets;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      for (int k = j + 1; k < n; ++k) {
+        const Vec3 normal = (points[j] - points[i]).cross(points[k] - points[i]);
+        int above = 0, below = 0;
+        for (int m = 0; m < n; ++m) {
+          if (m == i || m == j || m == k) continue;
+          (normal.dot(points[m] - points[i]) > 0.0 ? above : below)++;
+        }
+        if (above == 0) facets.emplace_back(i, j, k);
+        if (below == 0) facets.emplace_back(i, k, j);
+      }
+  Convex c;
+  std::vector<int> index(n, -1);
+  for (const sc::Tri& f : facets)
+    for (int v = 0; v < 3; ++v)
+      if (index[f[v]] < 0) {
+        index[f[v]] = static_cast<int>(c.vertices.size());
+        c.vertices.push_back(points[f[v]]);
+      }
+  std::set<std::pair<int, int>> edges;
+  for (const sc::Tri& f : facets) {
+    const sc::Tri t(index[f[0]], index[f[1]], index[f[2]]);
+    c.mesh.triangles.push_back(t);
+    c.face_normals.push_back((c.vertices[t[1]] - c.vertices[t[0]])
+                                 .cross(c.vertices[t[2]] - c.vertices[t[0]])
+                                 .normalized());
+    for (int v = 0; v < 3; ++v) {
+      const auto e = std::minmax(t[v], t[(v + 1) % 3]);
+      if (edges.insert(e).second)
+        c.edge_directions.push_back((c.vertices[e.second] - c.vertices[e.first]).normalized());
+    }
+  }
+  c.mesh.vertices = c.vertices;
+  for (const Vec3& v : c.vertices) c.centre += v / static_cast<double>(c.vertices.size());
+  return c;
+}
+
+double support(const std::vector<Vec3>& world, const Vec3& d) {
+  double best = -sc::kInfinity;
+  for (const Vec3& v : world) best = std::max(best, v.dot(d));
+  return best;
+}
+
+/// Exact translational penetration depth of A and B (world vertices and world axes):
+/// the least support of the Minkowski difference A - B over the candidate axes (face
+/// normals of each, cross products of an edge of each) contains every facet normal
+/// of the difference, so its minimum is the origin's distance to the hull boundary.
+/// Negative when some axis separates.
+double exactDepth(const std::vector<Vec3>& a, const std::vector<Vec3>& axes_a_faces,
+                  const std::vector<Vec3>& axes_a_edges, const std::vector<Vec3>& b,
+                  const std::vector<Vec3>& axes_b_faces, const std::vector<Vec3>& axes_b_edges) {
+  double depth = sc::kInfinity;
+  const auto tryAxis = [&](const Vec3& n) {
+    for (const Vec3& d : {n, Vec3(-n)}) depth = std::min(depth, support(a, d) + support(b, -d));
+  };
+  for (const Vec3& n : axes_a_faces) tryAxis(n);
+  for (const Vec3& n : axes_b_faces) tryAxis(n);
+  for (const Vec3& ea : axes_a_edges)
+    for (const Vec3& eb : axes_b_edges) {
+      const Vec3 n = ea.cross(eb);
+      const double len = n.norm();
+      if (len > 1e-9) tryAxis(n / len);
+    }
+  return depth;
+}
+
+struct PosedConvex {
+  const Convex* shape;
+  sc::Rigid pose;
+  std::vector<Vec3> world, faces, edges;
+  void place(const sc::Rigid& p) {
+    pose = p;
+    world.clear();
+    faces.clear();
+    edges.clear();
+    for (const Vec3& v : shape->vertices) world.push_back(p * v);
+    for (const Vec3& n : shape->face_normals) faces.push_back(p.rotation * n);
+    for (const Vec3& e : shape->edge_directions) edges.push_back(p.rotation * e);
+  }
+};
+
+double exactDepth(const PosedConvex& a, const PosedConvex& b) {
+  return exactDepth(a.world, a.faces, a.edges, b.world, b.faces, b.edges);
+}
+
+/// One case: A's free pose just outside B, its penetrating pose pushed in along the
+/// approach, and the exact depth there.
+struct ConvexCase {
+  std::shared_ptr<Convex> a, b;
+  sc::ModelPtr model_a, model_b;
+  sc::Rigid pose_b, free_a, deep_a;
+  double depth = 0.0;
+};
+
+constexpr int kCasesPerShape = 150;
+constexpr int kRepeats = 5;  // each case is timed this often; the fastest counts
+
+std::vector<ConvexCase> makeCases(bool boxes) {
+  std::mt19937_64 rng(boxes ? 5 : 6);
+  std::uniform_real_distribution<double> half(0.2, 1.0), push(0.005, 0.05);
+  std::vector<ConvexCase> cases;
+  while (static_cast<int>(cases.size()) < kCasesPerShape) {
+    ConvexCase c;
+    if (boxes) {
+      c.a = std::make_shared<Convex>(box(Vec3(half(rng), half(rng), half(rng))));
+      c.b = std::make_shared<Convex>(box(Vec3(half(rng), half(rng), half(rng))));
+    } else {
+      c.a = std::make_shared<Convex>(randomHull(rng, 20));
+      c.b = std::make_shared<Convex>(randomHull(rng, 20));
+    }
+    c.pose_b = {randomRotation(rng).toRotationMatrix(), Vec3::Zero()};
+    const sc::Mat3 ra = randomRotation(rng).toRotationMatrix();
+    const Vec3 u = randomDirection(rng);
+    PosedConvex pa{c.a.get(), {}, {}, {}, {}}, pb{c.b.get(), {}, {}, {}, {}};
+    pb.place(c.pose_b);
+    const auto depthAt = [&](double s) {
+      pa.place({ra, s * u});
+      return exactDepth(pa, pb);
+    };
+    double lo = 0.0, hi = 4.0;  // lo overlapping, hi apart
+    if (depthAt(lo) <= 0.0 || depthAt(hi) >= 0.0) continue;
+    for (int k = 0; k < 60; ++k) (depthAt(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+    c.free_a = {ra, (hi + 1e-3) * u};
+    c.deep_a = {ra, (hi - push(rng)) * u};
+    pa.place(c.deep_a);
+    c.depth = exactDepth(pa, pb);
+    if (c.depth <= 0.0) continue;
+    c.model_a = closedModel(c.a->mesh);
+    c.model_b = closedModel(c.b->mesh);
+    if (!c.model_a || !c.model_b) continue;
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+const std::vector<ConvexCase>& cases(bool boxes) {
+  static const std::vector<ConvexCase> box_cases = makeCases(true);
+  static const std::vector<ConvexCase> hull_cases = makeCases(false);
+  return boxes ? box_cases : hull_cases;
+}
+
+struct SweepRow {
+  std::string method, shapes, parameters;
+  double tolerance = 0;
+  int iterations = 0;
+  int cases = 0, failures = 0, over_1e6 = 0;  ///< over_1e6: relative error above 1e-6
+  double median_us = 0, median_err = 0, p90_err = 0, max_err = 0;
+};
+std::vector<SweepRow> g_sweep;
+
+void finishRow(benchmark::State& state, SweepRow row, const std::vector<double>& times,
+               std::vector<double> errors) {
+  row.cases = static_cast<int>(errors.size());
+  row.median_us = 1e6 * quantile(times, 0.5);
+  row.median_err = quantile(errors, 0.5);
+  row.p90_err = quantile(errors, 0.9);
+  row.max_err = quantile(errors, 1.0);
+  row.over_1e6 = static_cast<int>(
+      std::count_if(errors.begin(), errors.end(), [](double e) { return e > 1e-6; }));
+  state.counters["median_us"] = row.median_us;
+  state.counters["median_err"] = row.median_err;
+  state.counters["p90_err"] = row.p90_err;
+  state.counters["max_err"] = row.max_err;
+  state.counters["failures"] = row.failures;
+  state.counters["over_1e-6"] = row.over_1e6;
+  g_sweep.push_back(row);
+}
+
+sc::Placement placementOf(const sc::Rigid& r) {
+  sc::Placement p;
+  p.setMatrix(r.rotation, r.translation);
+  return p;
+}
+
+/// Ours: an update at the free pose starts tracking, the timed update at the
+/// penetrating pose gives the depth.
+void BM_OursConvex(benchmark::State& state) {
+  const bool boxes = state.range(0) == 0;
+  SweepRow row;
+  row.method = "smartcollision";
+  row.shapes = boxes ? "boxes" : "hulls";
+  row.tolerance = std::pow(10.0, -static_cast<double>(state.range(1)));
+  row.iterations = static_cast<int>(state.range(2));
+  row.parameters = "tolerance=" + std::to_string(row.tolerance) +
+                   " iterations=" + std::to_string(row.iterations);
+  sc::SceneSettings settings;
+  settings.tolerance = row.tolerance;
+  settings.max_iterations = row.iterations;
+  std::vector<double> times, errors;
+  for (auto _ : state) {
+    double total = 0.0;
+    for (const ConvexCase& c : cases(boxes)) {
+      const sc::Part pa{c.model_a.get(), sc::Rigid(), 0}, pb{c.model_b.get(), sc::Rigid(), 1};
+      const sc::Placement opponent = placementOf(c.pose_b), free = placementOf(c.free_a),
+                          deep = placementOf(c.deep_a);
+      double best = sc::kInfinity;
+      sc::DirectedResult r;
+      for (int k = 0; k < kRepeats; ++k) {
+        sc::PairTracker tracker;
+        updateOneWay(tracker, pa, free, pb, opponent, settings);
+        const auto t0 = Clock::now();
+        r = updateOneWay(tracker, pa, deep, pb, opponent, settings);
+        best = std::min(best, seconds(t0, Clock::now()));
+      }
+      total += best;
+      times.push_back(best);
+      if (!r.penetrating()) {
+        ++row.failures;
+        errors.push_back(1.0);
+      } else {
+        errors.push_back(std::abs(r.tpdv.norm() - c.depth) / c.depth);
+      }
+    }
+    state.SetIterationTime(total);
+  }
+  finishRow(state, row, times, errors);
+}
+
+#if SC_BENCH_HAVE_CCD
+struct CcdShape {
+  const Convex* shape;
+  const sc::Rigid* pose;
+};
+
+void ccdSupport(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+  const auto* s = static_cast<const CcdShape*>(obj);
+  const Vec3 d = s->pose->rotation.transpose() * Vec3(dir->v[0], dir->v[1], dir->v[2]);
+  const Vec3* best = &s->shape->vertices[0];
+  double best_dot = best->dot(d);
+  for (const Vec3& v : s->shape->vertices) {
+    const double dot = v.dot(d);
+    if (dot > best_dot) {
+      best_dot = dot;
+      best = &v;
+    }
+  }
+  const Vec3 w = *s->pose * *best;
+  ccdVec3Set(out, w.x(), w.y(), w.z());
+}
+
+/// MPR's interior point.
+void ccdCenter(const void* obj, ccd_vec3_t* out) {
+  const auto* s = static_cast<const CcdShape*>(obj);
+  const Vec3 w = *s->pose * s->shape->centre;
+  ccdVec3Set(out, w.x(), w.y(), w.z());
+}
+
+/// libccd: EPA (method 0) or MPR (method 1); the tolerance of the method swept.
+void BM_CcdConvex(benchmark::State& state) {
+  const bool boxes = state.range(0) == 0;
+  const bool mpr = state.range(1) == 1;
+  SweepRow row;
+  row.method = mpr ? "libccd_mpr" : "libccd_epa";
+  row.shapes = boxes ? "boxes" : "hulls";
+  row.tolerance = std::pow(10.0, -static_cast<double>(state.range(2)));
+  row.parameters =
+      std::string(mpr ? "mpr_tolerance=" : "epa_tolerance=") + std::to_string(row.tolerance);
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = ccdSupport;
+  ccd.support2 = ccdSupport;
+  ccd.center1 = ccdCenter;
+  ccd.center2 = ccdCenter;
+  ccd.max_iterations = 1000;
+  if (mpr)
+    ccd.mpr_tolerance = row.tolerance;
+  else
+    ccd.epa_tolerance = row.tolerance;
+  std::vector<double> times, errors;
+  for (auto _ : state) {
+    double total = 0.0;
+    for (const ConvexCase& c : cases(boxes)) {
+      const CcdShape a{c.a.get(), &c.deep_a}, b{c.b.get(), &c.pose_b};
+      double best = sc::kInfinity;
+      ccd_real_t depth = 0;
+      int status = 0;
+      for (int k = 0; k < kRepeats; ++k) {
+        ccd_vec3_t dir, pos;
+        const auto t0 = Clock::now();
+        status = mpr ? ccdMPRPenetration(&a, &b, &ccd, &depth, &dir, &pos)
+                     : ccdGJKPenetration(&a, &b, &ccd, &depth, &dir, &pos);
+        best = std::min(best, seconds(t0, Clock::now()));
+      }
+      total += best;
+      times.push_back(best);
+      if (status != 0 || !std::isfinite(depth)) {
+        ++row.failures;
+        errors.push_back(1.0);
+      } else {
+        errors.push_back(std::abs(depth - c.depth) / c.depth);
+      }
+    }
+    state.SetIterationTime(total);
+  }
+  finishRow(state, row, times, errors);
+}
+#endif
+
+#if SC_BENCH_HAVE_BULLET
+btTransform btPose(const sc::Rigid& r) {
+  const sc::Mat3& m = r.rotation;
+  return btTransform(
+      btMatrix3x3(m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0), m(2, 1), m(2, 2)),
+      btVector3(r.translation.x(), r.translation.y(), r.translation.z()));
+}
+
+std::unique_ptr<btConvexHullShape> btHull(const Convex& c) {
+  auto hull = std::make_unique<btConvexHullShape>();
+  for (const Vec3& v : c.vertices) hull->addPoint(btVector3(v.x(), v.y(), v.z()), false);
+  hull->recalcLocalAabb();
+  hull->setMargin(0);  // the exact shapes, as ours and libccd's
+  return hull;
+}
+
+/// Bullet's GJK-EPA (its accuracies are compile-time constants: one point).
+void BM_BulletConvex(benchmark::State& state) {
+  const bool boxes = state.range(0) == 0;
+  SweepRow row;
+  row.method = "bullet_gjk_epa";
+  row.shapes = boxes ? "boxes" : "hulls";
+  row.parameters =
+      std::string("defaults; btScalar of ") + std::to_string(sizeof(btScalar)) + " bytes";
+  std::vector<double> times, errors;
+  for (auto _ : state) {
+    double total = 0.0;
+    for (const ConvexCase& c : cases(boxes)) {
+      const auto ha = btHull(*c.a), hb = btHull(*c.b);
+      const btTransform ta = btPose(c.deep_a), tb = btPose(c.pose_b);
+      double best = sc::kInfinity;
+      btGjkEpaSolver2::sResults result;
+      bool ok = false;
+      for (int k = 0; k < kRepeats; ++k) {
+        const auto t0 = Clock::now();
+        ok = btGjkEpaSolver2::Penetration(ha.get(), ta, hb.get(), tb, btVector3(1, 0, 0), result);
+        best = std::min(best, seconds(t0, Clock::now()));
+      }
+      total += best;
+      times.push_back(best);
+      const double depth = -static_cast<double>(result.distance);
+      if (!ok || !std::isfinite(depth)) {
+        ++row.failures;
+        errors.push_back(1.0);
+      } else {
+        errors.push_back(std::abs(depth - c.depth) / c.depth);
+      }
+    }
+    state.SetIterationTime(total);
+  }
+  finishRow(state, row, times, errors);
+}
+#endif
+
+// Modes: 1 = INPUT (the default), 2 = FREE.
+BENCHMARK(BM_HapticPath)
+    ->ArgsProduct({{0, 1}, {1, 2}})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+// tolerance = 10^-arg1, iterations arg2.
+BENCHMARK(BM_OursConvex)
+    ->ArgsProduct({{0, 1}, {2, 3, 4, 5, 6}, {1, 2, 4, 8, 30}})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+#if SC_BENCH_HAVE_CCD
+BENCHMARK(BM_CcdConvex)
+    ->ArgsProduct({{0, 1}, {0, 1}, {2, 4, 6, 8}})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+#endif
+#if SC_BENCH_HAVE_BULLET
+BENCHMARK(BM_BulletConvex)
+    ->DenseRange(0, 1)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+#endif
+
+void writeCsvs(const std::string& dir) {
+  // A file whose benchmarks were filtered out is left as it is.
+  const std::string haptic = dir + "/penetration_haptic.csv";
+  std::FILE* f = g_haptic.empty() ? nullptr : std::fopen(haptic.c_str(), "w");
+  if (f) {
+    std::fprintf(
+        f,
+        "pair,mode,steps,penetrating,not_ok,median_us,p99_us,max_us,cpu_median_us,cpu_p99_us,"
+        "cpu_max_us,max_step,delta_max,max_tpdv,max_tpdv_jump\n");
+    for (const HapticRow& r : g_haptic)
+      std::fprintf(f, "%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.3g,%.3g,%.4g,%.4g\n",
+                   r.pair.c_str(), r.mode.c_str(), r.steps, r.penetrating, r.not_ok, r.median_us,
+                   r.p99_us, r.max_us, r.cpu_median_us, r.cpu_p99_us, r.cpu_max_us, r.max_step,
+                   r.delta_max, r.max_tpdv, r.max_tpdv_jump);
+    std::fclose(f);
+  }
+  const std::string steps = dir + "/penetration_haptic_steps.csv";
+  f = g_haptic_steps.empty() ? nullptr : std::fopen(steps.c_str(), "w");
+  if (f) {
+    std::fprintf(f, "step,wall_us,cpu_us,tpdv\n");
+    for (const auto& s : g_haptic_steps)
+      std::fprintf(f, "%d,%.2f,%.2f,%.5g\n", int(s[0]), s[1], s[2], s[3]);
+    std::fclose(f);
+  }
+  const std::string sweep = dir + "/penetration_sweep.csv";
+  f = g_sweep.empty() ? nullptr : std::fopen(sweep.c_str(), "w");
+  if (f) {
+    std::fprintf(f,
+                 "method,shapes,tolerance,iterations,cases,failures,median_us,median_err,p90_err,"
+                 "max_err,parameters,over_1e-6\n");
+    for (const SweepRow& r : g_sweep)
+      std::fprintf(f, "%s,%s,%.0e,%d,%d,%d,%.3f,%.3g,%.3g,%.3g,%s,%d\n", r.method.c_str(),
+                   r.shapes.c_str(), r.tolerance, r.iterations, r.cases, r.failures, r.median_us,
+                   r.median_err, r.p90_err, r.max_err, r.parameters.c_str(), r.over_1e6);
+    std::fclose(f);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // --csv-dir=<dir> is ours; the rest goes to Google Benchmark.
+  std::string csv_dir;
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--csv-dir=", 10) == 0)
+      csv_dir = argv[i] + 10;
+    else
+      args.push_back(argv[i]);
+  }
+  int count = static_cast<int>(args.size());
+  benchmark::Initialize(&count, args.data());
+  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  if (!csv_dir.empty()) writeCsvs(csv_dir);
+  return 0;
+}

@@ -16,6 +16,9 @@ namespace sc::detail {
 
 namespace {
 
+/// Relative violation of a row beyond which a solution is rejected (rounding is ~1e-16).
+constexpr double kRowTolerance = 1e-9;
+
 /// Least squares on the passive columns only; the others are zero.
 VecX solvePassive(const MatX& e, const VecX& f, const std::vector<bool>& passive) {
   const int m = static_cast<int>(e.cols());
@@ -106,10 +109,15 @@ QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, co
   const VecX r = e * u - f;
   if (r.norm() < 1e-12 || std::abs(r[n]) < 1e-300) return out;  // infeasible
   const VecX x = -r.head(n) / r[n];
-  out.z = goal + inv_sqrt_w.cwiseProduct(x);
+  const VecX z = goal + inv_sqrt_w.cwiseProduct(x);
+  // Nearly opposite rows (a wedge) leave r small but not zero: x = -r / r_(n+1) is
+  // then huge and violates the rows. Only a solution that keeps them is one.
+  const double scale = 1.0 + b.cwiseAbs().maxCoeff() + z.cwiseAbs().maxCoeff();
+  if (!allFinite(z) || ((a * z - b).array() < -kRowTolerance * scale).any()) return out;
+  out.z = z;
   // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows.
   out.lambda = u / std::abs(r[n]);
-  out.feasible = allFinite(out.z);
+  out.feasible = true;
   return out;
 }
 

@@ -20,7 +20,9 @@ struct QpResult {
 
 /// Solves the QP above as a least-distance program (Lawson & Hanson, "Solving Least
 /// Squares Problems", 1974, ch. 23: LDP through NNLS). Exact up to rounding and
-/// finite: no starting point needed, infeasible systems are reported, not guessed.
+/// finite: no starting point needed, infeasible systems are reported, not guessed
+/// (a solution violating a row by more than 1e-9 of the magnitudes involved, as
+/// nearly opposite rows produce, counts as infeasible).
 /// `weights` holds diag(W). Allocates its (small) work arrays.
 QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, const VecX& b);
 

@@ -39,9 +39,10 @@ void ProxyTracker::buildRows(GroupPairQuery& query, const Rigid& pose) {
 }
 
 int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
-                        const Vec3& center, const SceneSettings& settings) {
+                        const Vec3& center, const SceneSettings& settings, bool* feasible) {
   const double skin = skinOf(settings);
   Vec3 y = proxy_ * center;
+  *feasible = true;
   int k = 0;
   for (; k < settings.max_iterations; ++k) {
     const Rigid pose = poseAt(rotation, center, y);
@@ -57,7 +58,10 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
       b[i] = rows_[i].offset + rows_[i].normal.dot(rc) + skin;
     }
     const QpResult qp = solveContactQp(goal_center, Vec3::Ones(), a, b);
-    if (!qp.feasible) break;
+    if (!qp.feasible) {  // no translation frees the proxy at this rotation
+      *feasible = false;
+      break;
+    }
     const Vec3 target = qp.z;
     const Vec3 delta = target - y;
     if (delta.norm() <= 1e-12 * (1.0 + y.norm())) break;
@@ -119,31 +123,83 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
 bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                           const SceneSettings& settings, ProxyOutcome& out) {
   const RotationMode mode = settings.rotation_mode;
-  if (mode == RotationMode::Free || mode == RotationMode::Mix) {
-    out.iterations =
-        twistSlide(query, proxy_, goal, center, previous_proxy_, settings, skinOf(settings), twist_);
-    return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
-  }
+  if (mode == RotationMode::Free || mode == RotationMode::Mix)
+    return turn(query, goal, center, settings, out);
   const Vec3 goal_center = goal * center;
   const bool freeze = mode == RotationMode::None && penetrating_;
   const Mat3 rotation = freeze ? previous_proxy_.rotation : goal.rotation;
-  out.iterations = slide(query, rotation, goal_center, center, settings);
-  const bool reached = (proxy_ * center - goal_center).isZero(0.0) && rotation == goal.rotation;
+  bool feasible = true;
+  out.iterations = slide(query, rotation, goal_center, center, settings, &feasible);
+  // An infeasible slide left the proxy intersecting: even at the goal it has not
+  // reached a free pose.
+  const bool reached =
+      feasible && (proxy_ * center - goal_center).isZero(0.0) && rotation == goal.rotation;
   if (!reached && mode == RotationMode::None && !penetrating_) {
     // Penetration began in this update: None keeps the orientation it had before.
     proxy_ = previous_proxy_;
-    out.iterations += slide(query, previous_proxy_.rotation, goal_center, center, settings);
+    out.iterations += slide(query, previous_proxy_.rotation, goal_center, center, settings,
+                            &feasible);
+  } else if (!feasible && mode == RotationMode::Input) {
+    // No translation resolves (manual Fig. 5-11): Input turns too, rotation weighted
+    // far above translation, from the last free proxy.
+    proxy_ = previous_proxy_;
+    const int used = out.iterations;
+    const bool turned_to_goal = turn(query, goal, center, settings, out);
+    out.iterations += used;
+    return turned_to_goal;
   }
   return reached;
+}
+
+bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                        const SceneSettings& settings, ProxyOutcome& out) {
+  out.iterations =
+      twistSlide(query, proxy_, goal, center, previous_proxy_, settings, skinOf(settings), twist_);
+  return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
 }
 
 bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
                                      const Vec3& center, const SceneSettings& settings,
                                      ProxyOutcome& out) {
-  // Depth against the exact planes (zero skin): unbiased by the skin.
-  const Vec3 y = proxy_ * center;
-  const Vec3 goal_center = goal * center;
+  // Depth against the exact planes (zero skin): unbiased by the skin. A proxy that
+  // turned is projected with rotation too, or the skin would stay in its RPDV.
   query.contacts(proxy_, settings.tolerance, contacts_);
+  const bool turned = settings.rotation_mode != RotationMode::None &&
+                      proxy_.rotation != goal.rotation;
+  Rigid contact_pose = proxy_;
+  Vec3 normal = Vec3::UnitZ();
+  const int main = turned ? projectTwist(query, goal, center, settings, contact_pose, normal)
+                          : projectTranslation(query, goal, center, settings, contact_pose,
+                                               normal);
+  if (main == kGoalTouches) return false;
+  const Vec3 tpdv = goal * center - contact_pose * center;
+  // Exactly zero when the proxy follows the goal's rotation (Input mode).
+  const Vec3 rpdv = contact_pose.rotation == goal.rotation
+                        ? Vec3::Zero()
+                        : rotationVector(goal.rotation * contact_pose.rotation.transpose());
+  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) return false;  // the goal only touches
+  out.code = ErrorCode::Ok;
+  out.penetrating = true;
+  out.contact_pose = contact_pose;
+  out.tpdv = tpdv;
+  out.rpdv = rpdv;
+  out.distance = -tpdv.norm();
+  if (main >= 0) {
+    out.contact = contacts_[main];
+    out.contact.normal = normal;
+  } else {
+    // The proxy lags (iterations ran out) with nothing within the tolerance: its
+    // closest pair still names where the contact will be.
+    query.distance(proxy_, kInfinity, out.contact);
+  }
+  out.contact.point_t = contact_pose * (proxy_.inverse() * out.contact.point_t);
+  return true;
+}
+
+int ProxyTracker::projectTranslation(GroupPairQuery& query, const Rigid& goal,
+                                     const Vec3& center, const SceneSettings& settings,
+                                     Rigid& contact_pose, Vec3& normal) {
+  const Vec3 y = proxy_ * center;
   buildRows(query, proxy_);
   const Vec3 rc = proxy_.rotation * center;
   const int m = static_cast<int>(rows_.size());
@@ -153,35 +209,47 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
     a.row(i) = rows_[i].normal.transpose();
     b[i] = rows_[i].offset + rows_[i].normal.dot(rc);
   }
-  const QpResult qp = solveContactQp(goal_center, Vec3::Ones(), a, b);
-  Vec3 contact_center = y;
-  if (qp.feasible && (Vec3(qp.z) - y).norm() <= settings.tolerance) contact_center = qp.z;
-  const Vec3 tpdv = goal_center - contact_center;
-  // Exactly zero when the proxy follows the goal's rotation (Input mode).
-  const Vec3 rpdv = proxy_.rotation == goal.rotation
-                        ? Vec3::Zero()
-                        : rotationVector(goal.rotation * proxy_.rotation.transpose());
-  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) return false;  // the goal only touches
-  out.code = ErrorCode::Ok;
-  out.penetrating = true;
-  out.contact_pose = poseAt(proxy_.rotation, center, contact_center);
-  out.tpdv = tpdv;
-  out.rpdv = rpdv;
-  out.distance = -tpdv.norm();
+  const QpResult qp = solveContactQp(goal * center, Vec3::Ones(), a, b);
+  if (qp.feasible && (Vec3(qp.z) - y).norm() <= settings.tolerance)
+    contact_pose = poseAt(proxy_.rotation, center, qp.z);
   // Main contact: the most loaded row, else the first.
   int main = -1;
   for (int i = 0; i < m; ++i)
     if (main < 0 || (qp.feasible && qp.lambda[i] > qp.lambda[main])) main = i;
-  if (main >= 0) {
-    out.contact = contacts_[main];
-    out.contact.normal = rows_[main].normal;
-  } else {
-    // The proxy lags (iterations ran out) with nothing within the tolerance: its
-    // closest pair still names where the contact will be.
-    query.distance(proxy_, kInfinity, out.contact);
+  if (main >= 0) normal = rows_[main].normal;
+  return main;
+}
+
+int ProxyTracker::projectTwist(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                               const SceneSettings& settings, Rigid& contact_pose, Vec3& normal) {
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  const Vec3 y = proxy_ * center;
+  buildContactRows(query, proxy_, y, contacts_, previous_proxy_, twist_.rows, settings.tolerance);
+  const int m = static_cast<int>(twist_.rows.size());
+  MatX a(m, 6);
+  VecX b(m);
+  for (int i = 0; i < m; ++i) {
+    const ContactRow& row = twist_.rows[i];
+    a.row(i) << row.normal.transpose(), row.lever.cross(row.normal).transpose();
+    b[i] = -row.gap;
   }
-  out.contact.point_t += contact_center - y;
-  return true;
+  Vec6 target;
+  target << goal * center - y, rotationVector(goal.rotation * proxy_.rotation.transpose());
+  const double rho = targetRadius(query, center);
+  const QpResult qp = solveContactQp(target, twistWeights(settings, rho), a, b);
+  // Only a step within the tolerance: the rows are linear in rotation.
+  const Vec6 z = qp.feasible ? Vec6(qp.z) : Vec6::Zero();
+  if (m > 0 && qp.feasible && z.head<3>().norm() + z.tail<3>().norm() * rho <= settings.tolerance) {
+    if (z == target) return kGoalTouches;  // every row holds at the goal itself
+    contact_pose = poseAt(rotationFromVector(z.tail<3>()) * proxy_.rotation, center,
+                          y + z.head<3>());
+  }
+  int main = -1;
+  for (int i = 0; i < m; ++i)
+    if (main < 0 || (qp.feasible && qp.lambda[i] > qp.lambda[main])) main = i;
+  if (main < 0) return -1;
+  normal = twist_.rows[main].normal;
+  return twist_.rows[main].contact;
 }
 
 }  // namespace sc::detail

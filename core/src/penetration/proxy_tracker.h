@@ -27,15 +27,17 @@ struct ProxyOutcome {
 
 /// Outline of one update (design.md section 4):
 ///   1. First sight: intersecting -> InvalidInitialTransformation; else start here.
-///   2. Orient the proxy: Input follows the goal's rotation; None keeps the rotation
-///      of the last pose before penetration began; Free and Mix let the proxy turn
-///      (twistSlide: a 6-DOF version of step 3).
+///   2. Orient the proxy: Input follows the goal's rotation (and turns as in Free,
+///      rotation weighted first, when no translation resolves); None keeps the
+///      rotation of the last pose before penetration began; Free and Mix let the
+///      proxy turn (twistSlide: a 6-DOF version of step 3).
 ///   3. Up to max_iterations: collect contacts within the tolerance; solve the QP
 ///      "closest centre to the goal's centre, every contact's exact separating plane
 ///      kept at >= skin" (planes from support mappings are exact for convex leaves);
 ///      move towards its solution by conservative advancement against every other
 ///      leaf pair, so nothing is passed through. Stop when the step vanishes.
-///   4. Report the depth against the planes at zero skin, so it carries no bias.
+///   4. Report the depth against the planes at zero skin, so it carries no bias
+///      (with rotation when the proxy turned: Free, Mix, Input in a wedge).
 class ProxyTracker {
  public:
   /// `goal` places the target group in the opponent group's frame; `center` is the
@@ -56,11 +58,23 @@ class ProxyTracker {
   bool follow(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
               const SceneSettings& settings, ProxyOutcome& out);
   /// Runs step 3 with the proxy rotation fixed to `rotation`; returns the iterations.
+  /// `feasible` is false when the rows admit no translation (the proxy stays stuck).
   int slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
-            const Vec3& center, const SceneSettings& settings);
+            const Vec3& center, const SceneSettings& settings, bool* feasible);
+  /// twistSlide from the proxy; true when it reached the goal.
+  bool turn(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+            const SceneSettings& settings, ProxyOutcome& out);
   /// Fills `out` from the proxy; false when the goal itself only touches.
   bool reportPenetration(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                          const SceneSettings& settings, ProxyOutcome& out);
+  /// Zero-skin projection of the proxy at its rotation (3-D) or with rotation (6-D):
+  /// sets the contact pose and the main contact's normal, returns the main contact's
+  /// index in contacts_ (-1: none; kGoalTouches: the goal itself keeps every row).
+  int projectTranslation(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                         const SceneSettings& settings, Rigid& contact_pose, Vec3& normal);
+  int projectTwist(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                   const SceneSettings& settings, Rigid& contact_pose, Vec3& normal);
+  static constexpr int kGoalTouches = -2;
   void buildRows(GroupPairQuery& query, const Rigid& pose);
   Vec3 seedNormal(GroupPairQuery& query, const LeafContact& c) const;
 

@@ -15,6 +15,10 @@ Vec6 twistWeights(const SceneSettings& settings, double rho) {
   Vec6 w;
   if (settings.rotation_mode == RotationMode::Mix) {
     w << Vec3::Constant(settings.force_stiffness), Vec3::Constant(settings.torque_stiffness);
+  } else if (settings.rotation_mode == RotationMode::Input) {
+    // Input turns only when no translation resolves: rotation first.
+    const double r2 = std::max(rho * rho, 1e-300);
+    w << Vec3::Constant(1.0), Vec3::Constant(1e6 * r2);
   } else {
     const double r2 = std::max(rho * rho, 1e-300);
     w << Vec3::Constant(1.0), Vec3::Constant(1e-6 * r2);
@@ -40,7 +44,8 @@ int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec
   for (; k < settings.max_iterations; ++k) {
     const Vec3 y = proxy * center;
     query.contacts(proxy, settings.tolerance, scratch.contacts);
-    buildContactRows(query, proxy, y, scratch.contacts, previous_proxy, scratch.rows);
+    buildContactRows(query, proxy, y, scratch.contacts, previous_proxy, scratch.rows,
+                     settings.tolerance);
     const int m = static_cast<int>(scratch.rows.size());
     MatX a(m, 6);
     VecX b(m);

@@ -21,7 +21,8 @@ struct TwistScratch {
 
 /// Weights (w_T, w_R) of 1/2 w_T |TPDV - dc|^2 + 1/2 w_R |RPDV - dtheta|^2.
 /// Mix: (kT, kR), manual (5-5). Free: rotation almost free, so translation is
-/// minimised first and rotation second. `rho` (target radius about its centre)
+/// minimised first and rotation second. Input (only when no translation resolves):
+/// the reverse, rotation first. `rho` (target radius about its centre)
 /// makes the Free weights scale-free.
 Eigen::Matrix<double, 6, 1> twistWeights(const SceneSettings& settings, double rho);
 

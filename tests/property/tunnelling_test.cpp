@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: MIT
+// No tunnelling: a small object moved completely through a thin wall (a thin closed
+// box, or a two-triangle soup quad) in one update, or in a fast sequence, stays
+// penetrating on the side it came from although its final pose is free.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "penetration/result_invariants.h"
+#include "smartcollision/collision.h"
+#include "support/brute_force.h"
+#include "support/shapes.h"
+#include "support/test_support.h"
+
+namespace sc::test {
+namespace {
+
+#if SC_TEST_SANITIZED
+constexpr int kCases = 40;
+#else
+constexpr int kCases = 400;
+#endif
+constexpr double kWallHalfThickness = 0.01;
+constexpr double kWallHalfSize = 1.0;
+
+ModelPtr modelOf(ModelKind kind, const MeshData& mesh) {
+  auto piece = buildPiece(kind, mesh);
+  EXPECT_TRUE(piece.ok()) << piece.status().message();
+  if (!piece.ok()) return nullptr;
+  return std::make_shared<Model>(kind, std::vector<PiecePtr>{piece.value()});
+}
+
+/// The wall z in [-h, h] (closed box) or the quad z = 0 (soup), |x|, |y| <= 1.
+MeshData wallMesh(ModelKind kind) {
+  if (kind == ModelKind::ClosedPolyhedron)
+    return boxMesh(Vec3(kWallHalfSize, kWallHalfSize, kWallHalfThickness));
+  MeshData quad;
+  const double s = kWallHalfSize;
+  quad.vertices = {Vec3(-s, -s, 0), Vec3(s, -s, 0), Vec3(s, s, 0), Vec3(-s, s, 0)};
+  quad.triangles = {Tri{0, 1, 2}, Tri{0, 2, 3}};
+  return quad;
+}
+
+Placement placementOf(const Quat& q, const Vec3& center) {
+  Placement p;
+  p.orientation = q;
+  p.world_center = center;
+  return p;
+}
+
+struct Wall {
+  ModelKind kind;
+  const char* name;
+};
+
+class Tunnelling : public ::testing::TestWithParam<Wall> {};
+
+/// One update from a free pose on one side to a free pose on the other.
+TEST_P(Tunnelling, OneUpdateThroughTheWallReportsPenetration) {
+  const Wall wall = GetParam();
+  const std::uint64_t seed = 4242 + static_cast<int>(wall.kind);
+  SCOPED_TRACE(testing::Message() << "seed " << seed);
+  Rng rng(seed);
+  const MeshData wall_mesh = wallMesh(wall.kind);
+  const ModelPtr wall_model = modelOf(wall.kind, wall_mesh);
+  ASSERT_TRUE(wall_model);
+  const Part wall_part{wall_model.get(), Rigid(), 2};
+  const Placement wall_place;
+  const RotationMode modes[4] = {RotationMode::None, RotationMode::Input, RotationMode::Free,
+                                 RotationMode::Mix};
+  int reported = 0;
+  for (int i = 0; i < kCases; ++i) {
+    SCOPED_TRACE(testing::Message() << "case " << i);
+    const double size = uniform(rng, 0.02, 0.2);
+    const MeshData body = randomTetrahedronMesh(rng, size);
+    const ModelPtr body_model = modelOf(ModelKind::ClosedPolyhedron, body);
+    ASSERT_TRUE(body_model);
+    const Part body_part{body_model.get(), Rigid(), 1};
+    // Start and end well clear of the wall, on opposite sides, over its inner part.
+    const double side = uniform(rng, 0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+    const Vec3 start(uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5),
+                     side * uniform(rng, 0.3, 1.0));
+    const Vec3 end(uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5),
+                   -side * uniform(rng, 0.3, 1.0));
+    const Quat q0 = randomRotation(rng);
+    const Quat q1 = Quat(Eigen::AngleAxisd(uniform(rng, 0.0, 0.5), randomDirection(rng))) * q0;
+    const Placement from = placementOf(q0, start), to = placementOf(q1, end);
+    // The final pose really is free (brute force over the triangle pairs).
+    ASSERT_GT(meshSurfaceDistance(body, to.worldFromLocal(), wall_mesh, Rigid()).distance, 0.1);
+    SceneSettings settings;
+    settings.tolerance = 1e-3;
+    settings.rotation_mode = modes[i % 4];
+    PairTracker tracker;
+    DirectedResult out[2];
+    tracker.update({&body_part, 1, from}, {&wall_part, 1, wall_place}, {true, false}, settings,
+                   out);
+    ASSERT_EQ(out[0].code, ErrorCode::Ok);
+    ASSERT_GT(out[0].distance, 0.0);
+    tracker.update({&body_part, 1, to}, {&wall_part, 1, wall_place}, {true, false}, settings,
+                   out);
+    const DirectedResult& r = out[0];
+    ASSERT_EQ(r.code, ErrorCode::Ok);
+    const Status valid = detail::checkResult(r, to, wall_place);
+    EXPECT_TRUE(valid.ok()) << valid.message();
+    EXPECT_LT(r.distance, 0.0) << "tunnelled through the " << wall.name;
+    if (r.distance < 0.0) ++reported;
+    // The contact configuration stays on the side it came from, next to the wall.
+    Vec3 centroid = Vec3::Zero();
+    for (const Vec3& v : body.vertices) centroid += v / static_cast<double>(body.vertices.size());
+    const Rigid contact = placementOf(r.contact_orientation, r.contact_position).worldFromLocal();
+    EXPECT_GT(side * (contact * centroid).z(), 0.0);
+    EXPECT_GT(side * r.normal.z(), 0.9);
+    EXPECT_LE(meshSurfaceDistance(body, contact, wall_mesh, Rigid()).distance,
+              settings.tolerance);
+  }
+  std::printf("[ tunnelling ] %s, one update: %d of %d report penetration\n", wall.name,
+              reported, kCases);
+}
+
+/// A fast sequence: steps far larger than the wall's thickness cross it; the depth
+/// stays path-dependent while beyond it and vanishes when the body comes back.
+TEST_P(Tunnelling, FastSequenceStaysOnTheEntrySide) {
+  const Wall wall = GetParam();
+  const MeshData wall_mesh = wallMesh(wall.kind);
+  const ModelPtr wall_model = modelOf(wall.kind, wall_mesh);
+  const MeshData body = boxMesh(Vec3(0.05, 0.05, 0.05));
+  const ModelPtr body_model = modelOf(ModelKind::ClosedPolyhedron, body);
+  ASSERT_TRUE(wall_model && body_model);
+  const Part wall_part{wall_model.get(), Rigid(), 2}, body_part{body_model.get(), Rigid(), 1};
+  const Placement wall_place;
+  SceneSettings settings;
+  PairTracker tracker;
+  DirectedResult out[2];
+  // z: 1.0, 0.7, ..., -1.1 (steps of 0.3), then back up the same way.
+  std::vector<double> zs;
+  for (int k = 0; k <= 7; ++k) zs.push_back(1.0 - 0.3 * k);
+  for (int k = 6; k >= 0; --k) zs.push_back(1.0 - 0.3 * k);
+  bool crossed = false;
+  for (double z : zs) {
+    SCOPED_TRACE(testing::Message() << "z " << z);
+    const Placement p = placementOf(Quat::Identity(), Vec3(0.1, -0.2, z));
+    tracker.update({&body_part, 1, p}, {&wall_part, 1, wall_place}, {true, false}, settings, out);
+    const DirectedResult& r = out[0];
+    ASSERT_EQ(r.code, ErrorCode::Ok);
+    EXPECT_TRUE(detail::checkResult(r, p, wall_place).ok());
+    const double top = wall.kind == ModelKind::ClosedPolyhedron ? kWallHalfThickness : 0.0;
+    if (z - 0.05 > top) crossed = false;  // back out on top: the proxy follows
+    if (z + 0.05 < -top) crossed = true;
+    if (crossed || (z - 0.05 <= top && z + 0.05 >= -top)) {
+      EXPECT_LT(r.distance, 0.0);
+      // Pushed back up to the top face: depth = how far below it the body's bottom is.
+      EXPECT_NEAR(-r.distance, top - (z - 0.05), 1e-9);
+      EXPECT_VEC_NEAR(r.normal, Vec3::UnitZ(), 1e-9);
+    } else {
+      EXPECT_GT(r.distance, 0.0);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Walls, Tunnelling,
+                         ::testing::Values(Wall{ModelKind::ClosedPolyhedron, "thin box"},
+                                           Wall{ModelKind::TriangleSoup, "soup quad"}),
+                         [](const ::testing::TestParamInfo<Wall>& param_info) {
+                           return param_info.param.kind == ModelKind::ClosedPolyhedron ? "ThinBox"
+                                                                                 : "SoupQuad";
+                         });
+
+}  // namespace
+}  // namespace sc::test

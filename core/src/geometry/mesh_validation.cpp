@@ -368,6 +368,11 @@ Status validateArrays(const MeshData& mesh) {
       return {ErrorCode::InvalidArgument,
               "vertex " + std::to_string(i) + " has a non-finite coordinate"};
     }
+    // Squared distances and cross products of such coordinates overflow to inf.
+    if (v.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      return {ErrorCode::InvalidArgument, "vertex " + std::to_string(i) +
+                                              " has a coordinate beyond 1e100 in magnitude"};
+    }
   }
   if (mesh.triangles.empty()) return {ErrorCode::InvalidArgument, "the piece has no triangles"};
   const long long n = static_cast<long long>(mesh.vertices.size());

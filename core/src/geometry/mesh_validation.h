@@ -7,6 +7,10 @@
 
 namespace sc::detail {
 
+/// Largest accepted vertex coordinate magnitude: squares and cross products of
+/// coordinates stay far from overflow.
+inline constexpr double kMaxCoordinate = 1e100;
+
 /// Finite coordinates, indices in range, counts consistent. InvalidArgument otherwise.
 Status validateArrays(const MeshData& mesh);
 

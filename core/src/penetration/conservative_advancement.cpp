@@ -39,6 +39,13 @@ double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap
     LeafContact c = cand;
     for (int step = 0; step < kMaxSteps && s < limit; ++step) {
       if (step > 0) c = query.pairAt(cand.t_leaf, cand.o_leaf, motion.at(s));
+      // A pair already this close blocks unless the motion provably opens it: the
+      // separation along its normal grows at least at n.dc - angle * rho.
+      if (step == 0 && !c.intersecting && c.gap <= stop_gap &&
+          c.normal.dot(motion.dc) > angle * rho) {
+        s = limit;
+        break;
+      }
       if (c.intersecting || c.gap <= stop_gap) break;
       const double rate = std::max(0.0, -c.normal.dot(motion.dc)) + angle * rho;
       if (rate <= 0.0) {

@@ -8,6 +8,13 @@ install(EXPORT SmartCollisionTargets
         NAMESPACE SmartCollision::
         DESTINATION ${SC_INSTALL_CMAKEDIR})
 
+# The config finds Bullet (pkg-config) only when the plugin was built and installed.
+if(TARGET sc_bullet)
+  set(SC_HAS_BULLET_PLUGIN ON)
+else()
+  set(SC_HAS_BULLET_PLUGIN OFF)
+endif()
+
 configure_package_config_file(
   ${CMAKE_CURRENT_SOURCE_DIR}/cmake/SmartCollisionConfig.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/SmartCollisionConfig.cmake

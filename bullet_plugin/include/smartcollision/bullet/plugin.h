@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// The plugin object: registered create functions, primitive models, per-body
+// settings and the impulse buffer of the potential model. One per dispatcher.
+#pragma once
+
+#include <btBulletCollisionCommon.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "smartcollision/bullet/settings.h"
+#include "smartcollision/model.h"
+
+namespace sc::bullet {
+
+/// What the last collision detection saw (for metrics and tests).
+struct StepStats {
+  int pairs = 0;              ///< pairs the algorithm ran on
+  int penetrating = 0;        ///< directions with a penetration depth
+  int recovering = 0;         ///< directions first seen intersecting (AABB push)
+  double max_depth = 0.0;     ///< largest |TPDV| [m]
+  double max_rotation = 0.0;  ///< largest |RPDV| [rad]
+};
+
+class Plugin {
+ public:
+  explicit Plugin(const PluginSettings& settings = {});
+  ~Plugin();
+  Plugin(const Plugin&) = delete;
+  Plugin& operator=(const Plugin&) = delete;
+
+  const PluginSettings& settings() const { return settings_; }
+  /// InvalidArgument (settings kept) when validate(settings) fails.
+  Status setSettings(const PluginSettings& settings);
+  ContactModel contactModel() const { return settings_.model; }
+  void setContactModel(ContactModel model) { settings_.model = model; }
+
+  /// Per-body override of the world's ContactSettings. A pair with two overridden
+  /// bodies takes the larger stiffnesses and damping ratio and the shorter period.
+  void setBodySettings(const btCollisionObject* body, const ContactSettings& settings);
+  void clearBodySettings(const btCollisionObject* body);
+  /// The settings of the pair (a, b) after the overrides.
+  ContactSettings pairSettings(const btCollisionObject* a, const btCollisionObject* b) const;
+
+  /// SmartCollision model of a btBoxShape or btConvexHullShape (a convex polytope:
+  /// its corners / points, hulled, not tessellated), built once per shape and cached.
+  /// Null for any other shape.
+  ModelPtr primitiveModel(const btCollisionShape* shape);
+
+  // Impulse buffer: filled during collision detection, applied after it.
+  /// Called by ScDynamicsWorld; without a world the algorithm applies impulses at once.
+  void attachWorld(bool attached) { world_attached_ = attached; }
+  bool worldAttached() const { return world_attached_; }
+  /// One contact's impulse on `body`, at `lever` from its centre of mass: the spring
+  /// part `linear`, the velocity part `velocity` (damping, friction), `angular`.
+  void addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& linear,
+                  const btVector3& velocity, const btVector3& angular);
+  void beginStep();
+  /// Applies and clears the buffered impulses. A body's velocity parts are divided by
+  /// its number of contacts in the substep: summed at once (Jacobi), full parts from
+  /// several contacts would overshoot and flip the body's velocity every substep.
+  void applyImpulses();
+
+  StepStats& stats() { return stats_; }
+  const StepStats& stats() const { return stats_; }
+
+  /// Create functions owned here; the dispatcher keeps raw pointers to them.
+  btCollisionAlgorithmCreateFunc* contactCreateFunc() const;
+  btCollisionAlgorithmCreateFunc* closestPointsCreateFunc() const;
+
+ private:
+  struct Impulse {
+    btRigidBody* body;
+    btVector3 lever;
+    btVector3 linear;
+    btVector3 velocity;
+    btVector3 angular;
+  };
+  struct CachedModel {
+    ModelPtr model;
+    btVector3 signature;  ///< half extents, or (point count, coordinate sum, |sum|)
+  };
+  struct CreateFuncs;
+
+  PluginSettings settings_;
+  std::unordered_map<const btCollisionObject*, ContactSettings> body_settings_;
+  std::unordered_map<const btCollisionShape*, CachedModel> models_;
+  std::vector<Impulse> impulses_;
+  std::unordered_map<const btRigidBody*, int> contact_counts_;  ///< reused every substep
+  StepStats stats_;
+  bool world_attached_ = false;
+  std::unique_ptr<CreateFuncs> create_funcs_;
+};
+
+/// Construction info whose algorithm pool fits ScCollisionAlgorithm (release builds
+/// of Bullet's pool allocator do not check the size). Pass it to
+/// btDefaultCollisionConfiguration.
+btDefaultCollisionConstructionInfo collisionConstructionInfo();
+
+/// Registers the SmartCollision algorithm for ScBulletShape against ScBulletShape,
+/// btBoxShape and btConvexHullShape, both orders, in the contact and the closest-points
+/// tables. Other pairs keep Bullet's algorithms (spheres and capsules meet the
+/// shape's triangles through btConvexConcaveCollisionAlgorithm).
+/// @return the plugin (keep it alive as long as the dispatcher); InvalidArgument for
+///   a null dispatcher or bad settings; InvalidOperation when the dispatcher's
+///   algorithm pool is too small (use collisionConstructionInfo()).
+Result<std::shared_ptr<Plugin>> registerSmartCollision(btCollisionDispatcher* dispatcher,
+                                                       const PluginSettings& settings = {});
+
+}  // namespace sc::bullet

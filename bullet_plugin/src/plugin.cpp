@@ -1,0 +1,247 @@
+// SPDX-License-Identifier: MIT
+// Plugin: settings, per-body overrides, the primitive-model cache, the impulse
+// buffer and the registration of the create functions on a dispatcher.
+#include "smartcollision/bullet/plugin.h"
+
+#include <LinearMath/btConvexHullComputer.h>
+#include <LinearMath/btPoolAllocator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+
+#include "smartcollision/bullet/sc_bullet_shape.h"
+#include "smartcollision/bullet/sc_collision_algorithm.h"
+
+namespace sc::bullet {
+
+namespace {
+
+bool finiteAtLeast(double v, double lo) { return std::isfinite(v) && v >= lo; }
+
+Vec3 toVec(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
+
+/// Triangles of a convex polygon fan, each turned to face away from `inside`.
+void addFan(const std::vector<int>& loop, const std::vector<Vec3>& vertices, const Vec3& inside,
+            std::vector<Tri>& triangles) {
+  for (std::size_t k = 1; k + 1 < loop.size(); ++k) {
+    Tri t(loop[0], loop[k], loop[k + 1]);
+    const Vec3& a = vertices[static_cast<std::size_t>(t[0])];
+    const Vec3 n = (vertices[static_cast<std::size_t>(t[1])] - a)
+                       .cross(vertices[static_cast<std::size_t>(t[2])] - a);
+    if (n.dot(a - inside) < 0.0) std::swap(t[1], t[2]);
+    triangles.push_back(t);
+  }
+}
+
+ModelPtr convexModel(MeshData mesh) {
+  Result<PiecePtr> piece = buildPiece(ModelKind::ClosedPolyhedron, std::move(mesh));
+  if (!piece.hasValue()) return nullptr;
+  return std::make_shared<const Model>(ModelKind::ClosedPolyhedron,
+                                       std::vector<PiecePtr>{piece.value()});
+}
+
+ModelPtr boxModel(const btVector3& half) {
+  MeshData m;
+  for (int i = 0; i < 8; ++i)
+    m.vertices.emplace_back((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
+                            (i & 4) ? half.z() : -half.z());
+  // Faces as corner loops (bit patterns of the index), then fans facing outwards.
+  const int faces[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                           {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+  for (const auto& f : faces) addFan({f[0], f[1], f[2], f[3]}, m.vertices, Vec3::Zero(), m.triangles);
+  return convexModel(std::move(m));
+}
+
+ModelPtr hullModel(const btConvexHullShape& hull) {
+  const int n = hull.getNumPoints();
+  std::vector<btScalar> coords;
+  coords.reserve(static_cast<std::size_t>(3 * n));
+  for (int i = 0; i < n; ++i) {
+    const btVector3 p = hull.getScaledPoint(i);
+    coords.insert(coords.end(), {p.x(), p.y(), p.z()});
+  }
+  btConvexHullComputer computer;
+  if (computer.compute(coords.data(), 3 * static_cast<int>(sizeof(btScalar)), n, 0, 0) < 0 ||
+      computer.faces.size() < 4)
+    return nullptr;
+  MeshData m;
+  Vec3 inside = Vec3::Zero();
+  for (int i = 0; i < computer.vertices.size(); ++i) {
+    m.vertices.push_back(toVec(computer.vertices[i]));
+    inside += m.vertices.back();
+  }
+  inside /= static_cast<double>(m.vertices.size());
+  std::vector<int> loop;
+  for (int f = 0; f < computer.faces.size(); ++f) {
+    loop.clear();
+    const btConvexHullComputer::Edge* first = &computer.edges[computer.faces[f]];
+    const btConvexHullComputer::Edge* e = first;
+    do {
+      loop.push_back(e->getSourceVertex());
+      e = e->getNextEdgeOfFace();
+    } while (e != first && loop.size() <= static_cast<std::size_t>(computer.vertices.size()));
+    addFan(loop, m.vertices, inside, m.triangles);
+  }
+  return convexModel(std::move(m));
+}
+
+}  // namespace
+
+SceneSettings defaultQuerySettings() {
+  // Input, although the core accepts Mix: measured at 240 Hz, Mix topples the 15-box
+  // pyramid and costs 10x per step on the tower (docs/bullet.md); revisit when the
+  // core's Mix settles.
+  SceneSettings s;
+  s.rotation_mode = RotationMode::Input;
+  return s;
+}
+
+Status validate(const PluginSettings& s) {
+  auto bad = [](const char* what) { return Status(ErrorCode::InvalidArgument, what); };
+  if (s.model != ContactModel::Potential && s.model != ContactModel::Manifold)
+    return bad("unknown contact model");
+  const ContactSettings& c = s.contact;
+  if (!finiteAtLeast(c.contact_period_steps, 1.0)) return bad("contact_period_steps must be >= 1");
+  if (!finiteAtLeast(c.damping_ratio, 0.0)) return bad("damping_ratio must be >= 0");
+  if (!finiteAtLeast(c.force_stiffness, 0.0)) return bad("force_stiffness must be >= 0");
+  if (!finiteAtLeast(c.torque_stiffness, 0.0)) return bad("torque_stiffness must be >= 0");
+  if (!finiteAtLeast(c.friction_scale, 0.0)) return bad("friction_scale must be >= 0");
+  if (!(std::isfinite(s.recovery_speed) && s.recovery_speed > 0.0))
+    return bad("recovery_speed must be finite and > 0");
+  return validate(s.query);
+}
+
+struct Plugin::CreateFuncs {
+  struct Func : btCollisionAlgorithmCreateFunc {
+    Func(Plugin* p, bool closest) : plugin(p), closest_points(closest) {}
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* body0,
+                                                   const btCollisionObjectWrapper* body1) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(ScCollisionAlgorithm));
+      return new (mem) ScCollisionAlgorithm(ci, body0, body1, plugin, closest_points);
+    }
+    Plugin* plugin;
+    bool closest_points;
+  };
+  explicit CreateFuncs(Plugin* p) : contact(p, false), closest(p, true) {}
+  Func contact;
+  Func closest;
+};
+
+Plugin::Plugin(const PluginSettings& settings)
+    : settings_(settings), create_funcs_(std::make_unique<CreateFuncs>(this)) {}
+
+Plugin::~Plugin() = default;
+
+Status Plugin::setSettings(const PluginSettings& settings) {
+  Status s = validate(settings);
+  if (s.ok()) settings_ = settings;
+  return s;
+}
+
+void Plugin::setBodySettings(const btCollisionObject* body, const ContactSettings& settings) {
+  body_settings_[body] = settings;
+}
+
+void Plugin::clearBodySettings(const btCollisionObject* body) { body_settings_.erase(body); }
+
+ContactSettings Plugin::pairSettings(const btCollisionObject* a, const btCollisionObject* b) const {
+  if (body_settings_.empty()) return settings_.contact;
+  const auto ia = body_settings_.find(a);
+  const auto ib = body_settings_.find(b);
+  const bool has_a = ia != body_settings_.end();
+  const bool has_b = ib != body_settings_.end();
+  if (!has_a && !has_b) return settings_.contact;
+  if (has_a != has_b) return has_a ? ia->second : ib->second;
+  ContactSettings c = ia->second;
+  const ContactSettings& d = ib->second;
+  c.contact_period_steps = std::min(c.contact_period_steps, d.contact_period_steps);
+  c.damping_ratio = std::max(c.damping_ratio, d.damping_ratio);
+  c.force_stiffness = std::max(c.force_stiffness, d.force_stiffness);
+  c.torque_stiffness = std::max(c.torque_stiffness, d.torque_stiffness);
+  c.friction_scale = std::max(c.friction_scale, d.friction_scale);
+  return c;
+}
+
+ModelPtr Plugin::primitiveModel(const btCollisionShape* shape) {
+  btVector3 signature(0, 0, 0);
+  if (shape->getShapeType() == BOX_SHAPE_PROXYTYPE) {
+    signature = static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin();
+  } else if (shape->getShapeType() == CONVEX_HULL_SHAPE_PROXYTYPE) {
+    const auto* hull = static_cast<const btConvexHullShape*>(shape);
+    btVector3 sum(0, 0, 0);
+    for (int i = 0; i < hull->getNumPoints(); ++i) sum += hull->getScaledPoint(i);
+    signature = btVector3(btScalar(hull->getNumPoints()), sum.x() + sum.y() + sum.z(), sum.length());
+  } else {
+    return nullptr;
+  }
+  // The signature catches a shape changed in place or a new shape at a freed address.
+  auto it = models_.find(shape);
+  if (it != models_.end() && it->second.signature == signature) return it->second.model;
+  ModelPtr model = shape->getShapeType() == BOX_SHAPE_PROXYTYPE
+                       ? boxModel(signature)
+                       : hullModel(*static_cast<const btConvexHullShape*>(shape));
+  models_[shape] = CachedModel{model, signature};
+  return model;
+}
+
+void Plugin::addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& linear,
+                        const btVector3& velocity, const btVector3& angular) {
+  impulses_.push_back(Impulse{body, lever, linear, velocity, angular});
+}
+
+void Plugin::beginStep() {
+  impulses_.clear();
+  stats_ = StepStats();
+}
+
+void Plugin::applyImpulses() {
+  contact_counts_.clear();
+  for (const Impulse& i : impulses_) ++contact_counts_[i.body];
+  for (const Impulse& i : impulses_) {
+    const btVector3 total = i.linear + i.velocity / btScalar(contact_counts_[i.body]);
+    i.body->applyCentralImpulse(total);
+    i.body->applyTorqueImpulse(i.angular + i.lever.cross(total));
+  }
+  impulses_.clear();
+}
+
+btCollisionAlgorithmCreateFunc* Plugin::contactCreateFunc() const { return &create_funcs_->contact; }
+
+btCollisionAlgorithmCreateFunc* Plugin::closestPointsCreateFunc() const {
+  return &create_funcs_->closest;
+}
+
+btDefaultCollisionConstructionInfo collisionConstructionInfo() {
+  btDefaultCollisionConstructionInfo info;
+  info.m_customCollisionAlgorithmMaxElementSize = static_cast<int>(sizeof(ScCollisionAlgorithm));
+  return info;
+}
+
+Result<std::shared_ptr<Plugin>> registerSmartCollision(btCollisionDispatcher* dispatcher,
+                                                       const PluginSettings& settings) {
+  if (dispatcher == nullptr) return Status(ErrorCode::InvalidArgument, "null dispatcher");
+  Status s = validate(settings);
+  if (!s.ok()) return s;
+  btCollisionConfiguration* config = dispatcher->getCollisionConfiguration();
+  if (config == nullptr || config->getCollisionAlgorithmPool() == nullptr ||
+      config->getCollisionAlgorithmPool()->getElementSize() <
+          static_cast<int>(sizeof(ScCollisionAlgorithm)))
+    return Status(ErrorCode::InvalidOperation,
+                  "the dispatcher's algorithm pool is too small: build the collision "
+                  "configuration from sc::bullet::collisionConstructionInfo()");
+  auto plugin = std::make_shared<Plugin>(settings);
+  const int others[] = {kShapeType, BOX_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE};
+  for (int other : others) {
+    for (int order = 0; order < 2; ++order) {
+      const int t0 = order == 0 ? kShapeType : other;
+      const int t1 = order == 0 ? other : kShapeType;
+      dispatcher->registerCollisionCreateFunc(t0, t1, plugin->contactCreateFunc());
+      dispatcher->registerClosestPointsCreateFunc(t0, t1, plugin->closestPointsCreateFunc());
+    }
+  }
+  return plugin;
+}
+
+}  // namespace sc::bullet

@@ -1,0 +1,311 @@
+// SPDX-License-Identifier: MIT
+// ScCollisionAlgorithm: builds the two group views from the Bullet objects, runs
+// the pair tracker, and hands the results to the potential model (impulses), to a
+// persistent manifold (Bullet's solver), or to a closest-points query.
+#include "smartcollision/bullet/sc_collision_algorithm.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "contact_response.h"
+#include "smartcollision/bullet/plugin.h"
+#include "smartcollision/bullet/sc_bullet_shape.h"
+
+namespace sc::bullet {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+btVector3 toBt(const Vec3& v) {
+  return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
+}
+
+ModelPtr modelOf(Plugin& plugin, const btCollisionShape* shape) {
+  if (shape->getShapeType() == kShapeType)
+    return static_cast<const ScBulletShape*>(shape)->modelPtr();
+  return plugin.primitiveModel(shape);
+}
+
+/// One side of the pair: what the tracker and the response need.
+struct Side {
+  detail::BodySide body;
+  Part part;
+  GroupView view;
+  btVector3 aabb_min, aabb_max;
+  bool dynamic = false;
+};
+
+void makeSide(const btCollisionObjectWrapper* w, const Model* model, Side& s) {
+  const btCollisionObject* obj = w->getCollisionObject();
+  const btTransform& t = w->getWorldTransform();
+  s.body.object = obj;
+  btRigidBody* rb = const_cast<btRigidBody*>(btRigidBody::upcast(obj));
+  s.dynamic = rb != nullptr && !obj->isStaticOrKinematicObject() && rb->getInvMass() > 0;
+  s.body.body = s.dynamic ? rb : nullptr;
+  s.body.inv_mass = s.dynamic ? double(rb->getInvMass()) : 0.0;
+  s.body.center = t.getOrigin();
+  s.part.model = model;
+  s.part.id = 0;
+  s.view.parts = &s.part;
+  s.view.part_count = 1;
+  const btQuaternion q = t.getRotation();
+  s.view.placement.world_center = Vec3(t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z());
+  s.view.placement.local_center = Vec3::Zero();
+  s.view.placement.orientation = Quat(q.w(), q.x(), q.y(), q.z()).normalized();
+  // Tight AABB of the model (the shape's own AABB carries margins).
+  const Aabb& b = model->bounds();
+  const btVector3 lo(btScalar(b.min.x()), btScalar(b.min.y()), btScalar(b.min.z()));
+  const btVector3 hi(btScalar(b.max.x()), btScalar(b.max.y()), btScalar(b.max.z()));
+  const btVector3 half = 0.5 * (hi - lo);
+  const btVector3 center = t(0.5 * (hi + lo));
+  const btMatrix3x3 abs_basis = t.getBasis().absolute();
+  const btVector3 extent(abs_basis[0].dot(half), abs_basis[1].dot(half), abs_basis[2].dot(half));
+  s.aabb_min = center - extent;
+  s.aabb_max = center + extent;
+}
+
+/// Scalar moment of a side's body (trace / 3 of the world inertia), 0 when static.
+double meanMoment(const Side& s) {
+  if (s.body.body == nullptr) return 0.0;
+  const btVector3 inv = s.body.body->getInvInertiaDiagLocal();
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) sum += inv[k] > 0 ? 1.0 / double(inv[k]) : 0.0;
+  return sum / 3.0;
+}
+
+double reduced(double a, double b) {
+  if (a > 0.0 && b > 0.0) return a * b / (a + b);
+  return std::max(a, b);
+}
+
+/// Bullet's contact point of a direction whose target is the result's body `dir`:
+/// the point on body 1 and the normal from body 1 towards body 0, as
+/// btManifoldResult expects.
+void addPoint(const DirectedResult& r, int dir, double depth, btManifoldResult* result) {
+  const btVector3 n = toBt(r.normal);
+  const btVector3 p_o = toBt(r.point_on_opponent);
+  if (dir == 0) {
+    result->addContactPoint(n, p_o, btScalar(depth));
+  } else {
+    result->addContactPoint(-n, p_o + n * btScalar(depth), btScalar(depth));
+  }
+}
+
+/// Bullet's contact point for a point `p_t` of the target with signed distance
+/// `depth` along `n` (from O towards T); `dir` = the result's body that is T.
+void addTargetPoint(const btVector3& n, const btVector3& p_t, double depth, int dir,
+                    btManifoldResult* result) {
+  if (dir == 0) {
+    result->addContactPoint(n, p_t - n * btScalar(depth), btScalar(depth));
+  } else {
+    result->addContactPoint(-n, p_t, btScalar(depth));
+  }
+}
+
+/// The target's contact face (or edge) corners as extra manifold points: one closest
+/// pair per direction would leave a resting box on one corner. Their depth is taken
+/// against the opponent's contact plane (through its contact point, normal n); a
+/// corner over a gap of the opponent is counted as supported (an approximation).
+void addFeaturePoints(const DirectedResult& r, const GroupView& target, int dir, double threshold,
+                      btManifoldResult* result) {
+  const Feature& f = r.target_feature;
+  if (f.type == FeatureType::Vertex || r.target_piece < 0) return;
+  const Model* model = target.parts[0].model;
+  if (r.target_piece >= static_cast<int>(model->pieces().size())) return;
+  const MeshData& mesh = model->pieces()[static_cast<std::size_t>(r.target_piece)]->mesh();
+  const Rigid world_from_t = target.placement.worldFromLocal();
+  const btVector3 n = toBt(r.normal);
+  for (int k = 0; k < f.count(); ++k) {
+    const int vi = f.vertices[k];
+    if (vi < 0 || vi >= static_cast<int>(mesh.vertices.size())) continue;
+    const Vec3 p = world_from_t * mesh.vertices[static_cast<std::size_t>(vi)];
+    const double depth = r.normal.dot(p - r.point_on_opponent);
+    if (depth < threshold) addTargetPoint(n, toBt(p), depth, dir, result);
+  }
+}
+
+/// Smallest-overlap axis of two AABBs as a manifold point (first-seen intersections).
+void addOverlapPoint(const Side& a, const Side& b, btManifoldResult* result) {
+  int axis = 0;
+  double overlap = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double ov = std::min(a.aabb_max[k], b.aabb_max[k]) - std::max(a.aabb_min[k], b.aabb_min[k]);
+    if (k == 0 || ov < overlap) {
+      overlap = ov;
+      axis = k;
+    }
+  }
+  if (overlap <= 0.0) return;
+  btVector3 n(0, 0, 0);  // from body 1 towards body 0
+  n[axis] = (a.aabb_min[axis] + a.aabb_max[axis]) < (b.aabb_min[axis] + b.aabb_max[axis]) ? -1 : 1;
+  btVector3 lo = a.aabb_min;
+  lo.setMax(b.aabb_min);
+  btVector3 hi = a.aabb_max;
+  hi.setMin(b.aabb_max);
+  btVector3 p = 0.5 * (lo + hi);
+  p[axis] = n[axis] > 0 ? hi[axis] : lo[axis];  // on body 1's surface side
+  result->addContactPoint(n, p, btScalar(-overlap));
+}
+
+/// The core's settings for this pair. Mix weighs translation against rotation by
+/// kT / kR; with derived stiffnesses that ratio is m / I of the pair (omega^2 cancels).
+SceneSettings pairQuerySettings(const SceneSettings& base, const ContactSettings& contact,
+                                const Side sides[2], double dt) {
+  SceneSettings query = base;
+  const double m = reduced(sides[0].body.inv_mass > 0 ? 1.0 / sides[0].body.inv_mass : 0.0,
+                           sides[1].body.inv_mass > 0 ? 1.0 / sides[1].body.inv_mass : 0.0);
+  const double inertia = reduced(meanMoment(sides[0]), meanMoment(sides[1]));
+  if (!(m > 0.0 && inertia > 0.0)) return query;
+  const double omega = kTwoPi / (contact.contact_period_steps * (dt > 0.0 ? dt : 1.0 / 60.0));
+  const bool set_t = contact.force_stiffness > 0.0, set_r = contact.torque_stiffness > 0.0;
+  query.force_stiffness = set_t ? contact.force_stiffness : set_r ? m * omega * omega : m;
+  query.torque_stiffness = set_r ? contact.torque_stiffness : set_t ? inertia * omega * omega : inertia;
+  return query;
+}
+
+/// Closest-points query (contactTest): one point within the threshold, or the AABB
+/// overlap of a pair first seen intersecting.
+void reportClosestPoints(const DirectedResult out[2], const Side sides[2], bool swapped,
+                         btManifoldResult* result) {
+  const double threshold = double(result->m_closestPointDistanceThreshold);
+  for (int dir = 0; dir < 2; ++dir) {
+    if (out[dir].code == ErrorCode::Ok && out[dir].distance <= threshold) {
+      addPoint(out[dir], swapped ? 1 - dir : dir, out[dir].distance, result);
+      return;  // one point per query, as Bullet's convex algorithms report
+    }
+  }
+  if (out[0].code == ErrorCode::InvalidInitialTransformation ||
+      out[1].code == ErrorCode::InvalidInitialTransformation)
+    addOverlapPoint(sides[swapped ? 1 : 0], sides[swapped ? 0 : 1], result);
+}
+
+/// Buffers (or, without an ScDynamicsWorld, applies) the impulse of target t.
+void deliver(Plugin& plugin, const Side& t, const Side& o, const detail::Impulse& imp) {
+  btRigidBody* body = t.body.body;
+  if (body == nullptr || (imp.linear.isZero() && imp.velocity.isZero() && imp.angular.isZero()))
+    return;
+  if (!body->isActive()) {
+    // A sleeping body wakes when an active body presses on it.
+    if (o.body.body == nullptr || !o.body.body->isActive()) return;
+    body->activate();
+  }
+  // Impulses act at the placement centre (the body's centre of mass unless the shape
+  // is a compound's child).
+  const btVector3 lever = t.body.center - body->getCenterOfMassPosition();
+  if (plugin.worldAttached()) {
+    plugin.addImpulse(body, lever, imp.linear, imp.velocity, imp.angular);
+  } else {
+    body->applyCentralImpulse(imp.linear + imp.velocity);
+    body->applyTorqueImpulse(imp.angular + lever.cross(imp.linear + imp.velocity));
+  }
+}
+
+}  // namespace
+
+ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                                           const btCollisionObjectWrapper* body0,
+                                           const btCollisionObjectWrapper* body1, Plugin* plugin,
+                                           bool closest_points)
+    : btActivatingCollisionAlgorithm(ci, body0, body1),
+      plugin_(plugin),
+      objects_{body0->getCollisionObject(), body1->getCollisionObject()},
+      models_{modelOf(*plugin, body0->getCollisionShape()), modelOf(*plugin, body1->getCollisionShape())},
+      closest_points_(closest_points) {
+  if (closest_points_)
+    manifold_ = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
+}
+
+ScCollisionAlgorithm::~ScCollisionAlgorithm() {
+  if (manifold_ != nullptr) m_dispatcher->releaseManifold(manifold_);
+}
+
+void ScCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
+  if (manifold_ != nullptr && !closest_points_) manifolds.push_back(manifold_);
+}
+
+void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                            const btCollisionObjectWrapper* body1,
+                                            const btDispatcherInfo& info, btManifoldResult* result) {
+  // The pair keeps its order for its life; side i is objects_[i] in any case, so
+  // the tracker's directions stay attached to the same bodies.
+  if (!models_[0] || !models_[1]) return;
+  const bool swapped = body0->getCollisionObject() != objects_[0];
+  const btCollisionObjectWrapper* wraps[2] = {swapped ? body1 : body0, swapped ? body0 : body1};
+  Side sides[2];
+  for (int i = 0; i < 2; ++i) makeSide(wraps[i], models_[i].get(), sides[i]);
+
+  const PluginSettings& ps = plugin_->settings();
+  const ContactSettings contact = plugin_->pairSettings(objects_[0], objects_[1]);
+  const SceneSettings query = pairQuerySettings(ps.query, contact, sides, double(info.m_timeStep));
+  Directions dirs;
+  dirs.a_target = sides[0].dynamic || !sides[1].dynamic || closest_points_;
+  dirs.b_target = sides[1].dynamic || closest_points_;
+  DirectedResult out[2];
+  tracker_.update(sides[0].view, sides[1].view, dirs, query, out);
+
+  if (closest_points_) {
+    result->setPersistentManifold(manifold_);
+    reportClosestPoints(out, sides, swapped, result);
+    return;
+  }
+
+  StepStats& stats = plugin_->stats();
+  ++stats.pairs;
+  const double dt = double(info.m_timeStep);
+  const double period = contact.contact_period_steps * dt;  // recovery time scale
+  const bool potential = ps.model == ContactModel::Potential;
+  const double friction = double(objects_[0]->getFriction() * objects_[1]->getFriction());
+  bool any_point = false;
+  if (!potential) {
+    if (manifold_ == nullptr) manifold_ = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
+    result->setPersistentManifold(manifold_);
+  } else if (manifold_ != nullptr) {
+    manifold_->clearManifold();  // switched from the manifold model: no double response
+  }
+  for (int dir = 0; dir < 2; ++dir) {
+    const DirectedResult& r = out[dir];
+    const Side& t = sides[dir];
+    const Side& o = sides[1 - dir];
+    detail::Impulse imp;
+    if (r.code == ErrorCode::InvalidInitialTransformation) {
+      ++stats.recovering;
+      imp = detail::recoveryImpulse(t.body, o.body, t.aabb_min, t.aabb_max, o.aabb_min, o.aabb_max,
+                                    ps.recovery_speed, period);
+    } else if (r.code == ErrorCode::Ok) {
+      if (r.penetrating() && r.tpdv.dot(r.normal) > 0.0) {
+        // A depth whose TPDV points out of the opponent is not one (seen from the
+        // core when tracking starts within the tolerance of touching): start over.
+        tracker_.forget(dir);
+        continue;
+      }
+      if (!r.penetrating()) seen_apart_[dir] = true;
+      if (r.penetrating()) {
+        ++stats.penetrating;
+        stats.max_depth = std::max(stats.max_depth, r.tpdv.norm());
+        stats.max_rotation = std::max(stats.max_rotation, r.rpdv.norm());
+      }
+      const double threshold = potential ? 0.0 : double(manifold_->getContactBreakingThreshold());
+      if (!potential && r.distance < threshold) {
+        addPoint(r, swapped ? 1 - dir : dir, r.distance, result);
+        addFeaturePoints(r, t.view, swapped ? 1 - dir : dir, threshold, result);
+        any_point = true;
+      } else if (potential && r.penetrating()) {
+        imp = (seen_apart_[dir] ? detail::potentialImpulse(r, t.body, o.body, contact, dt, friction,
+                                                               query.tolerance)
+                                  : detail::recoveryImpulse(t.body, o.body, toBt(r.normal),
+                                                            r.tpdv.norm(), ps.recovery_speed, period));
+      }
+    }
+    deliver(*plugin_, t, o, imp);
+  }
+  if (!potential) {
+    if (any_point)
+      result->refreshContactPoints();
+    else
+      manifold_->clearManifold();
+  }
+}
+
+}  // namespace sc::bullet

@@ -1,0 +1,396 @@
+// SPDX-License-Identifier: MIT
+// Stacking demo: Bullet rigid bodies with SmartCollision contacts (potential or
+// manifold model, switchable with 'm'): a tower, a pyramid, a 1:100 mass-ratio stack
+// and real meshes resting on each other. --headless runs a fixed time and writes a
+// PNG and JSON metrics.
+#include <btBulletDynamicsCommon.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../common/off_mesh.h"
+#include "../common/viewer.h"
+#include "smartcollision/bullet/bullet.h"
+
+namespace {
+
+using sc::bullet::ContactModel;
+
+constexpr double kHz = 240.0;
+
+struct Options {
+  std::string scene = "tower";
+  ContactModel model = ContactModel::Potential;
+  sc::RotationMode rotation = sc::bullet::defaultQuerySettings().rotation_mode;
+  bool headless = false;
+  double seconds = 10.0;
+  std::string png, json;
+  std::vector<std::string> meshes;
+};
+
+struct Body {
+  btRigidBody* body = nullptr;
+  const sc::demo::DrawMesh* mesh = nullptr;
+  btVector3 start;
+  float color[3] = {0.8f, 0.5f, 0.3f};
+};
+
+sc::demo::DrawMesh drawMeshOf(const sc::bullet::ScBulletShape& shape) {
+  sc::demo::DrawMesh m;
+  for (const btVector3& v : shape.vertices()) m.vertices.insert(m.vertices.end(), {float(v.x()), float(v.y()), float(v.z())});
+  m.indices = shape.indices();
+  return m;
+}
+
+sc::MeshData boxMesh(double h) {
+  sc::MeshData m;
+  for (int i = 0; i < 8; ++i) m.vertices.emplace_back(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
+  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return m;
+}
+
+/// Scales a mesh so that its largest AABB extent is `size`.
+sc::MeshData normalised(sc::MeshData m, double size) {
+  sc::Aabb box;
+  for (const sc::Vec3& v : m.vertices) box.extend(v);
+  const double extent = (box.max - box.min).maxCoeff();
+  const sc::Vec3 c = 0.5 * (box.min + box.max);
+  for (sc::Vec3& v : m.vertices) v = (v - c) * (size / (extent > 0 ? extent : 1.0));
+  return m;
+}
+
+class Demo {
+ public:
+  explicit Demo(const Options& o) : options_(o) { build(); }
+  ~Demo() { clear(); }
+
+  void build() {
+    clear();
+    config_ = std::make_unique<btDefaultCollisionConfiguration>(sc::bullet::collisionConstructionInfo());
+    dispatcher_ = std::make_unique<btCollisionDispatcher>(config_.get());
+    sc::bullet::PluginSettings settings;
+    settings.model = options_.model;
+    settings.query.rotation_mode = options_.rotation;
+    auto plugin = sc::bullet::registerSmartCollision(dispatcher_.get(), settings);
+    if (!plugin.ok()) {
+      std::fprintf(stderr, "registerSmartCollision: %s\n", plugin.status().message().c_str());
+      std::exit(1);
+    }
+    broadphase_ = std::make_unique<btDbvtBroadphase>();
+    solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+    world_ = std::make_unique<sc::bullet::ScDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                                           config_.get(), plugin.value());
+    world_->setGravity(btVector3(0, -9.81f, 0));
+    ground_shape_ = std::make_unique<btBoxShape>(btVector3(10, 1, 10));
+    ground_mesh_ = drawMeshOf(*makeShape(boxMesh(1.0)));  // drawn scaled below
+    addRigid(ground_shape_.get(), 0.0, btVector3(0, -1, 0));
+    box_ = makeShape(boxMesh(0.5));
+    box_mesh_ = drawMeshOf(*box_);
+    if (options_.scene == "pyramid") {
+      for (int row = 0; row < 5; ++row)
+        for (int i = 0; i < 5 - row; ++i) addBox(btVector3(btScalar((i - 0.5 * (4 - row)) * 1.1), btScalar(row + 0.5 + (row + 1) * 0.01), 0), 1.0);
+    } else if (options_.scene == "massratio") {
+      const double masses[] = {1.0, 100.0, 1.0, 100.0};
+      for (int i = 0; i < 4; ++i) addBox(btVector3(0, btScalar(i + 0.5 + (i + 1) * 0.01), 0), masses[i]);
+    } else if (options_.scene == "meshes") {
+      addMeshes();
+    } else {
+      for (int i = 0; i < 10; ++i) addBox(btVector3(0, btScalar(i + 0.5 + (i + 1) * 0.01), 0), 1.0);
+    }
+    steps_ = 0;
+    step_seconds_ = 0.0;
+    max_depth_ = 0.0;
+    max_drift_ = 0.0;
+  }
+
+  void step() {
+    const auto t0 = std::chrono::steady_clock::now();
+    world_->stepSimulation(btScalar(1.0 / kHz), 1, btScalar(1.0 / kHz));
+    step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ++steps_;
+    max_depth_ = std::max(max_depth_, world_->plugin().stats().max_depth);
+    const Body& top = bodies_.back();
+    const btVector3 d = top.body->getCenterOfMassPosition() - top.start;
+    max_drift_ = std::max(max_drift_, std::sqrt(double(d.x() * d.x() + d.z() * d.z())));
+    // RMS velocity over the last second of a fixed run ("at rest").
+    if (options_.headless && steps_ > static_cast<int>((options_.seconds - 1.0) * kHz)) {
+      double s2 = 0;
+      for (const Body& b : bodies_) s2 += double(b.body->getLinearVelocity().length2());
+      rest_sum_ += s2 / double(bodies_.size());
+      ++rest_samples_;
+    }
+  }
+
+  void toggleModel() {
+    options_.model = options_.model == ContactModel::Potential ? ContactModel::Manifold : ContactModel::Potential;
+    world_->plugin().setContactModel(options_.model);
+  }
+  void setScene(const std::string& s) {
+    options_.scene = s;
+    build();
+  }
+
+  void collect(std::vector<sc::demo::DrawItem>& items) const {
+    sc::demo::DrawItem ground;
+    ground.mesh = &ground_mesh_;
+    btTransform t(btQuaternion::getIdentity(), btVector3(0, -0.5f, 0));
+    btScalar m[16];
+    t.getOpenGLMatrix(m);
+    for (int i = 0; i < 16; ++i) ground.matrix[i] = float(m[i]);
+    // the ground mesh is a 2 m cube: stretch it to 20 x 1 x 20 m
+    ground.matrix[0] = 10;
+    ground.matrix[5] = 0.5f;
+    ground.matrix[10] = 10;
+    ground.color[0] = 0.55f;
+    ground.color[1] = 0.6f;
+    ground.color[2] = 0.65f;
+    items.push_back(ground);
+    std::vector<const Body*> drawn;
+    if (base_.body != nullptr) drawn.push_back(&base_);
+    for (const Body& b : bodies_) drawn.push_back(&b);
+    for (const Body* bp : drawn) {
+      const Body& b = *bp;
+      sc::demo::DrawItem item;
+      item.mesh = b.mesh;
+      b.body->getWorldTransform().getOpenGLMatrix(m);
+      for (int i = 0; i < 16; ++i) item.matrix[i] = float(m[i]);
+      std::memcpy(item.color, b.color, sizeof(item.color));
+      items.push_back(item);
+    }
+  }
+
+  std::string overlay() const {
+    char buf[512];
+    std::snprintf(buf, sizeof(buf),
+                  "scene %s (1 tower, 2 pyramid, 3 mass ratio, 4 meshes; r reset)\n"
+                  "model %s (m switches)   t = %.2f s   %.3f ms/step\n"
+                  "top drift %.4f m   max penetration %.4f m",
+                  options_.scene.c_str(), options_.model == ContactModel::Potential ? "potential" : "manifold",
+                  steps_ / kHz, steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, max_drift_, max_depth_);
+    return buf;
+  }
+
+  double energy() const {
+    double e = 0.0;
+    for (const Body& b : bodies_) {
+      const double m = 1.0 / double(b.body->getInvMass());
+      e += 0.5 * m * double(b.body->getLinearVelocity().length2()) + m * 9.81 * double(b.body->getCenterOfMassPosition().y());
+      const btVector3 w = b.body->getWorldTransform().getBasis().transpose() * b.body->getAngularVelocity();
+      const btVector3 inv = b.body->getInvInertiaDiagLocal();
+      for (int k = 0; k < 3; ++k) e += inv[k] > 0 ? 0.5 * double(w[k] * w[k] / inv[k]) : 0.0;
+    }
+    return e;
+  }
+
+  std::string json() const {
+    char buf[1024];
+    std::snprintf(buf, sizeof(buf),
+                  "{\n  \"scene\": \"%s\",\n  \"model\": \"%s\",\n  \"bodies\": %zu,\n  \"hz\": %.0f,\n"
+                  "  \"seconds\": %.3f,\n  \"top_drift_m\": %.6f,\n  \"max_penetration_m\": %.6f,\n"
+                  "  \"rms_velocity_at_rest_mps\": %.6g,\n  \"energy_J\": %.6f,\n  \"ms_per_step\": %.4f\n}\n",
+                  options_.scene.c_str(), options_.model == ContactModel::Potential ? "potential" : "manifold",
+                  bodies_.size(), kHz, steps_ / kHz, max_drift_, max_depth_,
+                  rest_samples_ ? std::sqrt(rest_sum_ / rest_samples_) : 0.0, energy(),
+                  steps_ ? 1e3 * step_seconds_ / steps_ : 0.0);
+    return buf;
+  }
+
+  float targetY() const { return options_.scene == "tower" ? 5.0f : 1.5f; }
+  float distance() const { return options_.scene == "tower" ? 19.0f : options_.scene == "meshes" ? 7.0f : 10.0f; }
+
+ private:
+  std::shared_ptr<sc::bullet::ScBulletShape> makeShape(const sc::MeshData& mesh) {
+    auto s = sc::bullet::ScBulletShape::create(sc::ModelKind::ClosedPolyhedron, mesh);
+    if (!s.ok()) {
+      std::fprintf(stderr, "shape: %s\n", s.status().message().c_str());
+      return nullptr;
+    }
+    shapes_.push_back(s.value());
+    return s.value();
+  }
+
+  btRigidBody* addRigid(btCollisionShape* shape, double mass, const btVector3& p) {
+    btVector3 inertia(0, 0, 0);
+    if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
+    btRigidBody::btRigidBodyConstructionInfo ci(btScalar(mass), nullptr, shape, inertia);
+    ci.m_startWorldTransform.setOrigin(p);
+    rigid_.push_back(std::make_unique<btRigidBody>(ci));
+    btRigidBody* b = rigid_.back().get();
+    b->setActivationState(DISABLE_DEACTIVATION);  // metrics see the contact model, not sleep
+    world_->addRigidBody(b);
+    return b;
+  }
+
+  void addBox(const btVector3& p, double mass) {
+    Body b;
+    b.body = addRigid(box_.get(), mass, p);
+    b.mesh = &box_mesh_;
+    b.start = p;
+    const float shade = mass > 10 ? 0.35f : 0.0f;
+    const float palette[3][3] = {{0.85f, 0.45f, 0.25f}, {0.3f, 0.55f, 0.8f}, {0.45f, 0.7f, 0.35f}};
+    const float* c = palette[bodies_.size() % 3];
+    for (int k = 0; k < 3; ++k) b.color[k] = c[k] - shade * c[k];
+    bodies_.push_back(b);
+  }
+
+  /// The first mesh is a static base (3 m), the others drop onto it (1 m each).
+  void addMeshes() {
+    std::vector<std::string> paths = options_.meshes;
+    if (paths.empty())
+      paths = {SC_DEMO_MESH_DIR "/fandisk.off", SC_DEMO_MESH_DIR "/elephant.off",
+               SC_DEMO_MESH_DIR "/elephant.off", SC_DEMO_MESH_DIR "/elephant.off"};
+    double top = 0.0;
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      sc::MeshData mesh = sc::demo::readOff(paths[i]);
+      if (mesh.triangles.empty()) continue;
+      const bool base = i == 0;
+      auto shape = makeShape(normalised(std::move(mesh), base ? 3.0 : 1.0));
+      if (!shape) continue;
+      mesh_draw_.push_back(std::make_unique<sc::demo::DrawMesh>(drawMeshOf(*shape)));
+      btVector3 lo, hi;
+      shape->getAabb(btTransform::getIdentity(), lo, hi);
+      const double margin = shape->aabbMargin();
+      Body b;
+      if (base) {
+        b.start = btVector3(0, btScalar(-(double(lo.y()) + margin)), 0);  // resting on the ground
+        top = double(hi.y() - lo.y()) - 2 * margin;
+      } else {
+        const double x = 0.9 * (double(i) - 2.0);
+        b.start = btVector3(btScalar(x), btScalar(top + 0.1 - double(lo.y()) + margin), btScalar(0.2 * double(i % 2)));
+      }
+      b.body = addRigid(shape.get(), base ? 0.0 : 1.0, b.start);
+      b.mesh = mesh_draw_.back().get();
+      b.color[0] = base ? 0.7f : 0.5f + 0.2f * float(i % 2);
+      b.color[1] = base ? 0.7f : 0.55f;
+      b.color[2] = base ? 0.6f : 0.75f - 0.2f * float(i % 2);
+      if (base)
+        base_ = b;
+      else
+        bodies_.push_back(b);
+    }
+    if (bodies_.empty()) {
+      std::fprintf(stderr, "no mesh could be loaded; pass --mesh BASE.off --mesh BODY.off ...\n");
+      std::exit(1);
+    }
+  }
+
+  void clear() {
+    if (world_)
+      for (auto& b : rigid_) world_->removeRigidBody(b.get());
+    rigid_.clear();
+    bodies_.clear();
+    base_ = Body();
+    world_.reset();
+    solver_.reset();
+    broadphase_.reset();
+    dispatcher_.reset();
+    config_.reset();
+    mesh_draw_.clear();
+    shapes_.clear();
+    rest_sum_ = 0.0;
+    rest_samples_ = 0;
+  }
+
+  Options options_;
+  std::unique_ptr<btDefaultCollisionConfiguration> config_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btBroadphaseInterface> broadphase_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<sc::bullet::ScDynamicsWorld> world_;
+  std::unique_ptr<btBoxShape> ground_shape_;
+  std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> shapes_;
+  std::shared_ptr<sc::bullet::ScBulletShape> box_;
+  sc::demo::DrawMesh box_mesh_, ground_mesh_;
+  std::vector<std::unique_ptr<sc::demo::DrawMesh>> mesh_draw_;
+  std::vector<std::unique_ptr<btRigidBody>> rigid_;
+  std::vector<Body> bodies_;  ///< the dynamic bodies (metrics)
+  Body base_;                 ///< static mesh of the meshes scene
+  int steps_ = 0;
+  double step_seconds_ = 0.0, max_depth_ = 0.0, max_drift_ = 0.0;
+  double rest_sum_ = 0.0;
+  int rest_samples_ = 0;
+};
+
+bool parse(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= argc) return false;
+      out = argv[++i];
+      return true;
+    };
+    std::string v;
+    if (a == "--headless") {
+      o.headless = true;
+    } else if (a == "--scene" && value(v)) {
+      o.scene = v;
+    } else if (a == "--model" && value(v)) {
+      o.model = v == "manifold" ? ContactModel::Manifold : ContactModel::Potential;
+    } else if (a == "--rotation" && value(v)) {
+      o.rotation = v == "mix" ? sc::RotationMode::Mix : v == "free" ? sc::RotationMode::Free : sc::RotationMode::Input;
+    } else if (a == "--seconds" && value(v)) {
+      o.seconds = std::atof(v.c_str());
+    } else if (a == "--png" && value(v)) {
+      o.png = v;
+    } else if (a == "--json" && value(v)) {
+      o.json = v;
+    } else if (a == "--mesh" && value(v)) {
+      o.meshes.push_back(v);
+      o.scene = "meshes";
+    } else {
+      std::fprintf(stderr,
+                   "usage: %s [--scene tower|pyramid|massratio|meshes] [--model potential|manifold]\n"
+                   "          [--rotation input|mix|free]\n"
+                   "          [--mesh BASE.off --mesh BODY.off...] [--headless [--seconds S] [--png F] [--json F]]\n",
+                   argv[0]);
+      return false;
+    }
+  }
+  return o.seconds > 0.0 && std::isfinite(o.seconds);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (!parse(argc, argv, options)) return 2;
+  Demo demo(options);
+  sc::demo::ViewerCallbacks cb;
+  cb.collect = [&](std::vector<sc::demo::DrawItem>& items) { demo.collect(items); };
+  cb.overlay = [&] { return demo.overlay(); };
+  if (options.headless) {
+    const int steps = static_cast<int>(std::lround(options.seconds * kHz));
+    for (int i = 0; i < steps; ++i) demo.step();
+    const std::string metrics = demo.json();
+    std::fputs(metrics.c_str(), stdout);
+    if (!options.json.empty()) {
+      FILE* f = std::fopen(options.json.c_str(), "w");
+      if (f == nullptr) return 1;
+      std::fputs(metrics.c_str(), f);
+      std::fclose(f);
+    }
+    if (!options.png.empty() &&
+        !sc::demo::renderToPng(argc, argv, cb, demo.targetY(), demo.distance(), options.png))
+      return 1;
+    return 0;
+  }
+  cb.step = [&] {
+    for (int i = 0; i < 4; ++i) demo.step();  // 240 Hz physics at about 60 frames per second
+  };
+  cb.key = [&](unsigned char k) {
+    if (k == 'm') demo.toggleModel();
+    if (k == 'r') demo.build();
+    if (k == '1') demo.setScene("tower");
+    if (k == '2') demo.setScene("pyramid");
+    if (k == '3') demo.setScene("massratio");
+    if (k == '4') demo.setScene("meshes");
+  };
+  sc::demo::runViewer(argc, argv, "SmartCollision stacking", cb, demo.targetY(), demo.distance());
+  return 0;
+}

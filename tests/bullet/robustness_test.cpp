@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: MIT
+// Overlap recovery (bodies spawned 25% overlapping separate with bounded energy)
+// and no tunnelling (a small mesh at 50 m/s against a thin soup wall), with
+// Bullet's btGImpactMeshShape in the same scene for comparison.
+#include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
+#include <BulletCollision/Gimpact/btGImpactShape.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "bullet_world.h"
+#include "support/shapes.h"
+
+namespace sc::test {
+namespace {
+
+class Recovery : public ::testing::TestWithParam<bullet::ContactModel> {};
+
+TEST_P(Recovery, QuarterOverlapSeparatesWithBoundedEnergy) {
+  BulletWorld w(GetParam(), 0.0);  // no gravity: all energy comes from the recovery
+  auto box = boxShape(btVector3(0.5, 0.5, 0.5));
+  btRigidBody* a = w.addBody(box, 1.0, btVector3(0, 0, 0));
+  btRigidBody* b = w.addBody(box, 1.0, btVector3(0.75, 0.1, 0.05));  // 25% overlap along x
+  const double speed = w.plugin->settings().recovery_speed;
+  const double m_red = 0.5;
+  double max_energy = 0.0;
+  int separated_at = -1;
+  for (int i = 0; i < 240 * 3; ++i) {
+    w.step();
+    max_energy = std::max(max_energy, w.kineticEnergy());
+    const double gap = double(b->getCenterOfMassPosition().x() - a->getCenterOfMassPosition().x()) - 1.0;
+    if (separated_at < 0 && gap > 0.0) separated_at = i;
+  }
+  const double gap = double(b->getCenterOfMassPosition().x() - a->getCenterOfMassPosition().x()) - 1.0;
+  std::printf("[recovery] separated after %d steps, gap %.4f m, max kinetic energy %.4f J "
+              "(bound 1/2 m_red v^2 = %.4f J)\n",
+              separated_at, gap, max_energy, 0.5 * m_red * speed * speed);
+  EXPECT_GE(separated_at, 0);
+  EXPECT_GT(gap, 0.0);
+  // The push leaves the pair at the recovery speed at most: relative kinetic energy
+  // 1/2 m_red v^2 (the centre of mass does not move).
+  EXPECT_LE(max_energy, 0.5 * m_red * speed * speed * (1.0 + 1e-3));
+  EXPECT_LT(b->getAngularVelocity().length(), 1e-3);
+}
+
+// Known to fail today (run with --gtest_also_run_disabled_tests): boxes spawned exactly
+// touching reach 0.59 m/s and the top sinks 6 cm (potential), or the tower collapses
+// (manifold). Touching counts as intersecting for a pair seen for the first time, and
+// tracking that starts within the core's tolerance of touching gives depths of the
+// wrong sign (docs/bullet.md). Spawn with a gap until the core resolves it.
+TEST_P(Recovery, DISABLED_TowerSpawnedTouchingDoesNotPop) {
+  // The push must scale with the overlap, not throw the boxes apart.
+  BulletWorld w(GetParam());
+  w.addGround();
+  auto box = boxShape(btVector3(0.5, 0.5, 0.5));
+  std::vector<btRigidBody*> boxes;
+  for (int i = 0; i < 5; ++i) boxes.push_back(w.addBody(box, 1.0, btVector3(0, btScalar(i + 0.5), 0)));
+  double max_speed = 0.0;
+  for (int i = 0; i < 480; ++i) {
+    w.step();
+    for (btRigidBody* b : boxes) max_speed = std::max(max_speed, double(b->getLinearVelocity().length()));
+  }
+  const double top = double(boxes.back()->getCenterOfMassPosition().y());
+  std::printf("[touching spawn] max speed %.4f m/s, top at %.4f m (spawned at 4.5)\n", max_speed, top);
+  EXPECT_LT(max_speed, 0.1 * w.plugin->settings().recovery_speed);
+  EXPECT_NEAR(top, 4.5, 0.05);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, Recovery,
+                         ::testing::Values(bullet::ContactModel::Potential,
+                                           bullet::ContactModel::Manifold),
+                         contactModelName);
+
+/// A 2 m x 2 m single-sheet wall (two triangles, zero thickness) in the plane x = 0.
+MeshData wallMesh() {
+  MeshData m;
+  m.vertices = {Vec3(0, -1, -1), Vec3(0, 1, -1), Vec3(0, 1, 1), Vec3(0, -1, 1)};
+  m.triangles = {Tri(0, 1, 2), Tri(0, 2, 3)};
+  return m;
+}
+
+constexpr double kHalf = 0.05;   // 10 cm cube
+constexpr double kSpeed = 50.0;  // 0.21 m per substep at 240 Hz: two cube sizes
+constexpr int kPhases = 8;       // start offsets spread over one substep's travel
+
+/// Where a shot ended: the wall is the plane x = 0, shots come from x > 0.
+struct Shot {
+  double min_x = 1e9;   ///< smallest centre x seen
+  double final_x = 0.0;
+  double final_vx = 0.0;
+  bool passed() const { return final_x < 0.0; }
+};
+
+/// Fires `body` from x = start at -50 m/s and follows it for 0.5 s.
+Shot fire(BulletWorld& w, btRigidBody* body, double start) {
+  body->setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(btScalar(start), 0, 0)));
+  body->setLinearVelocity(btVector3(btScalar(-kSpeed), 0, 0));
+  Shot s;
+  for (int i = 0; i < 120; ++i) {
+    w.step();
+    s.min_x = std::min(s.min_x, double(body->getCenterOfMassPosition().x()));
+  }
+  s.final_x = double(body->getCenterOfMassPosition().x());
+  s.final_vx = double(body->getLinearVelocity().x());
+  return s;
+}
+
+double phaseStart(const BulletWorld& w, int phase) { return 1.0 + phase * kSpeed * w.dt / kPhases; }
+
+TEST(Tunnelling, SmallMeshAtFiftyMetresPerSecondNeverPassesThinWall) {
+  for (bullet::ContactModel model : {bullet::ContactModel::Potential}) {
+    int passes = 0;
+    double deepest = 1e9;
+    for (int phase = 0; phase < kPhases; ++phase) {
+      BulletWorld w(model, 0.0);
+      auto wall = bullet::ScBulletShape::create(ModelKind::TriangleSoup, wallMesh());
+      ASSERT_TRUE(wall.ok()) << wall.status().message();
+      w.addBody(wall.value(), 0.0, btVector3(0, 0, 0));
+      btRigidBody* shot = w.addBody(boxShape(btVector3(kHalf, kHalf, kHalf)), 0.1, btVector3(1, 0, 0));
+      const Shot s = fire(w, shot, phaseStart(w, phase));
+      passes += s.passed() ? 1 : 0;
+      deepest = std::min(deepest, s.min_x);
+      // Stopped in the substep it hit (at most one substep's travel behind the wall,
+      // even when the cube was sampled wholly behind it), then pushed back out.
+      EXPECT_GT(s.min_x, -kSpeed * w.dt) << "phase " << phase;
+      EXPECT_GT(s.final_x, 0.0) << "phase " << phase;
+    }
+    std::printf("[tunnel %s] %d of %d shots passed; deepest centre x %.4f m\n",
+                model == bullet::ContactModel::Potential ? "potential" : "manifold", passes,
+                kPhases, deepest);
+    EXPECT_EQ(passes, 0);
+  }
+}
+
+TEST(Tunnelling, ManifoldModelInTheSameSceneForComparison) {
+  // Manifold model: the depth reaches Bullet's solver as one corner point; recorded,
+  // not asserted (known to let the shot through today, see docs/bullet.md).
+  int passes = 0;
+  for (int phase = 0; phase < kPhases; ++phase) {
+    BulletWorld w(bullet::ContactModel::Manifold, 0.0);
+    auto wall = bullet::ScBulletShape::create(ModelKind::TriangleSoup, wallMesh());
+    ASSERT_TRUE(wall.ok()) << wall.status().message();
+    w.addBody(wall.value(), 0.0, btVector3(0, 0, 0));
+    btRigidBody* shot = w.addBody(boxShape(btVector3(kHalf, kHalf, kHalf)), 0.1, btVector3(1, 0, 0));
+    passes += fire(w, shot, phaseStart(w, phase)).passed() ? 1 : 0;
+  }
+  std::printf("[tunnel manifold] %d of %d shots passed through the wall\n", passes, kPhases);
+  ::testing::Test::RecordProperty("manifold_passes", std::to_string(passes));
+  SUCCEED();
+}
+
+TEST(Tunnelling, GImpactInTheSameSceneForComparison) {
+  // Bullet's own concave-concave path: btGImpactMeshShape for both the wall and the cube.
+  auto mesh_of = [](const MeshData& m) {
+    auto tm = std::make_shared<btTriangleMesh>();
+    for (const Tri& t : m.triangles) {
+      btVector3 v[3];
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& p = m.vertices[static_cast<std::size_t>(t[k])];
+        v[k] = btVector3(btScalar(p.x()), btScalar(p.y()), btScalar(p.z()));
+      }
+      tm->addTriangle(v[0], v[1], v[2]);
+    }
+    return tm;
+  };
+  auto wall_mesh = mesh_of(wallMesh());
+  auto cube_mesh = mesh_of(boxMesh(Vec3::Constant(kHalf)));
+  int passes = 0;
+  for (int phase = 0; phase < kPhases; ++phase) {
+    BulletWorld w(bullet::ContactModel::Potential, 0.0);
+    btGImpactCollisionAlgorithm::registerAlgorithm(w.dispatcher.get());
+    auto wall = std::make_shared<btGImpactMeshShape>(wall_mesh.get());
+    auto cube = std::make_shared<btGImpactMeshShape>(cube_mesh.get());
+    wall->updateBound();
+    cube->updateBound();
+    w.addBody(wall, 0.0, btVector3(0, 0, 0));
+    btRigidBody* shot = w.addBody(cube, 0.1, btVector3(1, 0, 0));
+    passes += fire(w, shot, phaseStart(w, phase)).passed() ? 1 : 0;
+  }
+  std::printf("[tunnel gimpact] %d of %d shots passed through the wall\n", passes, kPhases);
+  ::testing::Test::RecordProperty("gimpact_passes", std::to_string(passes));
+  // Only a record: GImpact's outcome is Bullet's, reported in docs/bullet.md.
+  SUCCEED();
+}
+
+}  // namespace
+}  // namespace sc::test

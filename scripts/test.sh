@@ -1,28 +1,64 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Installs what is needed, builds everything, and runs every test: the whole suite
-# in Release, then again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# in Release; again under AddressSanitizer + UndefinedBehaviorSanitizer (clang), whose
+# build also makes the libFuzzer targets, each then fuzzed for a short time; and the
+# scene tests under ThreadSanitizer.
 # Usage: scripts/test.sh            (from anywhere; no input needed)
+#        SC_FUZZ_SECONDS=N scripts/test.sh   fuzzes each target for N s (default 20)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="${SC_JOBS:-$(nproc)}"
+fuzz_seconds="${SC_FUZZ_SECONDS:-20}"
 
 "$root/scripts/setup.sh"
 
-build() {  # build <dir> <extra cmake args...>
+configure() {  # configure <dir> <extra cmake args...>
   local dir="$1"; shift
   cmake -S "$root" -B "$dir" -G Ninja -DSC_WARNINGS_AS_ERRORS=ON "$@"
-  cmake --build "$dir" -j "$jobs"
+}
+build() {  # build <dir> <extra cmake args...>
+  configure "$@"
+  cmake --build "$1" -j "$jobs"
+}
+# A build directory configured with another compiler cannot be switched in place.
+use_clang() {  # use_clang <dir>
+  if [[ -f "$1/CMakeCache.txt" ]] &&
+     ! grep -q '^CMAKE_CXX_COMPILER:[A-Z]*=.*clang++' "$1/CMakeCache.txt"; then
+    rm -rf "$1"
+  fi
+  export CC=clang CXX=clang++
 }
 
 echo "== Release build and tests"
 build "$root/build" -DCMAKE_BUILD_TYPE=Release
 ctest --test-dir "$root/build" -j "$jobs" --output-on-failure --timeout 1200
 
-echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
-build "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSC_SANITIZE=ON \
-  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
-  -DSC_BUILD_DEMOS=OFF -DSC_BUILD_BENCH=OFF
+# Sanitized passes: clang, -O1, without demos and benchmarks.
+sanitized=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
+           -DSC_BUILD_DEMOS=OFF -DSC_BUILD_BENCH=OFF)
+
+echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang, with fuzz targets) and tests"
+(
+  use_clang "$root/build-asan"
+  build "$root/build-asan" "${sanitized[@]}" -DSC_SANITIZE=ON -DSC_BUILD_FUZZERS=ON
+)
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir "$root/build-asan" -j "$jobs" --output-on-failure --timeout 1800
+
+echo "== Fuzzing: every target for ${fuzz_seconds} s (longer: scripts/fuzz.sh 600)"
+"$root/scripts/fuzz.sh" "$fuzz_seconds" "$root/build-asan"
+
+echo "== ThreadSanitizer build of the scene tests, and the scene tests"
+(
+  use_clang "$root/build-tsan"
+  configure "$root/build-tsan" "${sanitized[@]}" -DSC_SANITIZE_THREAD=ON \
+    -DSC_BUILD_TOOLS=OFF -DSC_BUILD_BULLET_PLUGIN=OFF
+  cmake --build "$root/build-tsan" -j "$jobs" --target sc_scene_tests
+)
+# The Large differential scene only repeats the Medium one's code paths at five
+# times the cost under TSan.
+TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+  ctest --test-dir "$root/build-tsan" -L scene -E '/Large' -j "$jobs" --output-on-failure \
+  --timeout 1800
 echo "== all tests passed"

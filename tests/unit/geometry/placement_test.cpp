@@ -206,12 +206,14 @@ TEST(Placement, Table72MatrixIsTwcTimesRTimesTlcInverse) {
   EXPECT_NEAR(p.matrix().data()[13], -2, kTol);
   EXPECT_NEAR(p.matrix().data()[14], -3, kTol);
 
-  Eigen::Matrix4d t_wc = Eigen::Matrix4d::Identity(), t_lc = Eigen::Matrix4d::Identity(),
+  // T_LC^-1 is the translation by -r_LC (written out: clang's vectorised 4x4
+  // inverse raises a trapped FP flag on this input).
+  Eigen::Matrix4d t_wc = Eigen::Matrix4d::Identity(), t_lc_inv = Eigen::Matrix4d::Identity(),
                   r4 = Eigen::Matrix4d::Identity();
   t_wc.topRightCorner<3, 1>() = p.world_center;
-  t_lc.topRightCorner<3, 1>() = p.local_center;
+  t_lc_inv.topRightCorner<3, 1>() = -p.local_center;
   r4.topLeftCorner<3, 3>() = p.rotation();
-  EXPECT_LE((p.matrix() - t_wc * r4 * t_lc.inverse()).norm(), kTol);
+  EXPECT_LE((p.matrix() - t_wc * r4 * t_lc_inv).norm(), kTol);
 
   const Vec3 r_l(0.5, -7, 2);
   const Eigen::Vector4d h = p.matrix() * r_l.homogeneous();

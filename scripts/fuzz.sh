@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Runs every libFuzzer target of a SC_BUILD_FUZZERS build for a bounded time, each
+# on a scratch copy of its seed corpus (the repository is never modified). Fails on
+# the first crash, leak, timeout or broken invariant and prints the input's path.
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [BUILD_DIR]
+#        (defaults: 20 and build-asan, the sanitizer build of scripts/test.sh)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+seconds="${1:-20}"
+build="$(cd "${2:-$root/build-asan}" && pwd)"
+corpora="$root/tests/fuzz/corpus"
+artifacts="$build/fuzz-artifacts"  # crash inputs outlive the scratch directory
+
+shopt -s nullglob
+targets=("$build"/tests/fuzz/fuzz_*)
+if [[ ${#targets[@]} -eq 0 ]]; then
+  echo "fuzz.sh: no fuzz targets in $build/tests/fuzz (configure with -DSC_BUILD_FUZZERS=ON)" >&2
+  exit 1
+fi
+
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+mkdir -p "$artifacts"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
+
+status=0
+for exe in "${targets[@]}"; do
+  [[ -x "$exe" && -f "$exe" ]] || continue
+  name="$(basename "$exe")"
+  mkdir -p "$scratch/$name" "$artifacts/$name"
+  [[ -d "$corpora/$name" ]] && cp -r "$corpora/$name/." "$scratch/$name/"
+  log="$scratch/$name.log"
+  # -timeout: one input taking this long is a failure (a hang or runaway loop).
+  if "$exe" "$scratch/$name" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2560 \
+       -print_final_stats=1 -artifact_prefix="$artifacts/$name/" >"$log" 2>&1; then
+    runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
+    secs="$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)"
+    cov="$(grep -o 'cov: [0-9]*' "$log" | tail -1 || true)"
+    rate=$(( ${runs:-0} / ( ${secs:-0} > 0 ? ${secs:-1} : 1 ) ))
+    printf '%-22s ok   %8s runs in %ss (%s exec/s), %s\n' "$name" "${runs:-?}" "${secs:-?}" \
+      "$rate" "${cov:-cov: ?}"
+  else
+    status=1
+    echo "$name FAILED; last lines of its log:"
+    tail -n 60 "$log"
+    crash="$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -1)"
+    echo "$name: failing input: ${crash:-(none written; see the log above)}"
+    echo "$name: reproduce with: $exe ${crash:-<input>}"
+  fi
+done
+exit "$status"

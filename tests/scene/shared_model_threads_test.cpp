@@ -66,7 +66,9 @@ std::vector<std::uint64_t> runScene(const std::vector<ModelPtr>& models, std::ui
   for (int i = 0; i < kGroups + kStatics; ++i) {
     const ModelPtr& model = models[static_cast<std::size_t>(i) % models.size()];
     EXPECT_TRUE(scene.addObject(i, model, randomPlacement(rng, extent)).ok());
-    if (i < kGroups) EXPECT_TRUE(scene.addObjectToGroup(100 + i, i).ok());
+    if (i < kGroups) {
+      EXPECT_TRUE(scene.addObjectToGroup(100 + i, i).ok());
+    }
   }
   std::vector<std::uint64_t> hashes;
   for (int frame = 0; frame < kFrames; ++frame) {

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/math_util.h"
+
 namespace sc::detail {
 namespace {
 
@@ -15,9 +17,10 @@ namespace {
 constexpr double kRotationTolerance = 1e-4;
 /// Absolute tolerance on the last row 0 0 0 1 of SC_TRANSFORMATION_MATRIX.
 constexpr double kLastRowTolerance = 1e-4;
-/// Largest accepted input or stored coordinate magnitude. Far beyond any model, and
-/// low enough that no table operation (a few sums of rotated differences) can
-/// overflow, so a placement never holds inf or NaN.
+/// Largest accepted input value: no table operation (a few sums of rotated
+/// differences) can overflow, so a placement never holds inf or NaN. The stored
+/// centres are then held to the tighter kMaxCoordinate, as vertices are, so that
+/// distances and motions between placed models cannot overflow either.
 constexpr double kMaxMagnitude = 1e300;
 constexpr int kMaxArraySize = 16;
 
@@ -32,8 +35,6 @@ bool readValues(const Real* values, int n, double* out) {
   }
   return true;
 }
-
-bool withinBounds(const Vec3& v) { return v.cwiseAbs().maxCoeff() <= kMaxMagnitude; }
 
 bool lastRowIsAffine(const Eigen::Matrix4d& m) {
   return std::abs(m(3, 0)) <= kLastRowTolerance && std::abs(m(3, 1)) <= kLastRowTolerance &&
@@ -121,7 +122,7 @@ SCint setTransformation(Placement& placement, SCenum type, const Real* values) {
   if (!readValues(values, n, v)) return SC_ERROR_INVALID_ARGUMENT;
   Placement next = placement;
   if (!apply(next, type, v)) return SC_ERROR_INVALID_ARGUMENT;
-  if (!withinBounds(next.world_center) || !withinBounds(next.local_center)) {
+  if (!withinCoordinateLimit(next.world_center) || !withinCoordinateLimit(next.local_center)) {
     return SC_ERROR_INVALID_ARGUMENT;
   }
   placement = next;

@@ -44,4 +44,17 @@ bool allFinite(const Eigen::DenseBase<Derived>& m) {
   return true;
 }
 
+/// Largest accepted vertex coordinate and placement position magnitude: squares and
+/// cross products of coordinates, and of differences between them, stay far from
+/// overflow.
+inline constexpr double kMaxCoordinate = 1e100;
+
+/// Finite and within kMaxCoordinate in every component.
+template <class Derived>
+bool withinCoordinateLimit(const Eigen::DenseBase<Derived>& m) {
+  for (Eigen::Index i = 0; i < m.size(); ++i)
+    if (!(std::abs(m.derived().coeff(i)) <= kMaxCoordinate)) return false;
+  return true;
+}
+
 }  // namespace sc::detail

@@ -3,13 +3,10 @@
 // piece; closedness, winding, non-degeneracy and one shell for closed polyhedra.
 #pragma once
 
+#include "geometry/math_util.h"
 #include "smartcollision/model.h"
 
 namespace sc::detail {
-
-/// Largest accepted vertex coordinate magnitude: squares and cross products of
-/// coordinates stay far from overflow.
-inline constexpr double kMaxCoordinate = 1e100;
 
 /// Finite coordinates, indices in range, counts consistent. InvalidArgument otherwise.
 Status validateArrays(const MeshData& mesh);

@@ -95,6 +95,17 @@ struct Job {
   Directions dirs;
 };
 
+/// A placement the queries can use: centres finite and within kMaxCoordinate (as
+/// vertices are, so no distance or motion overflows), a quaternion that normalises.
+Status checkPlacement(const Placement& p) {
+  if (!detail::withinCoordinateLimit(p.world_center) ||
+      !detail::withinCoordinateLimit(p.local_center) ||
+      !detail::allFinite(p.orientation.coeffs()) || p.orientation.norm() < 0.5)
+    return Status(ErrorCode::InvalidArgument,
+                  "placement not finite or a centre beyond 1e100 in magnitude");
+  return {};
+}
+
 GroupView viewOf(const GroupRec& g) {
   GroupView v;
   v.parts = g.parts.data();
@@ -412,6 +423,7 @@ Status Scene::addObject(int id, ModelPtr model, const Placement& placement) {
   if (model->kind() != impl_->kind)
     return Status(ErrorCode::InvalidOperation, "object type differs from the scene type");
   if (impl_->objects.count(id)) return invalidId("object id already in the scene");
+  if (Status s = checkPlacement(placement); !s.ok()) return s;
   ObjectRec o;
   o.id = id;
   o.model = std::move(model);
@@ -478,9 +490,7 @@ Status Scene::setGroupPlacement(int gid, const Placement& placement) {
     return Status(ErrorCode::InvalidOperation, "the static group does not move");
   const auto it = impl_->groups.find(gid);
   if (it == impl_->groups.end()) return invalidId("unknown group id");
-  if (!detail::allFinite(placement.world_center) || !detail::allFinite(placement.local_center) ||
-      !detail::allFinite(placement.orientation.coeffs()) || placement.orientation.norm() < 0.5)
-    return Status(ErrorCode::InvalidArgument, "non-finite placement");
+  if (Status s = checkPlacement(placement); !s.ok()) return s;
   it->second.placement = placement;
   it->second.placement.orientation.normalize();
   return {};

@@ -397,8 +397,12 @@ TEST(TransformationIoLimits, HugeFiniteInputIsInvalidSoNothingOverflows) {
   Placement p = startState();
   const double huge[] = {1e301, 0, 0};
   EXPECT_EQ(setTransformation(p, SC_POSITION_WORLD_CENTER, huge), SC_ERROR_INVALID_ARGUMENT);
-  // Each accepted step is bounded, but stacking them is refused before overflow.
-  const double big[] = {9e299, -9e299, 9e299};
+  // Centres are held to the vertex limit, 1e100: beyond it distances and motions
+  // between placed models could overflow.
+  const double beyond[] = {0, -1.01e100, 0};
+  EXPECT_EQ(setTransformation(p, SC_POSITION_WORLD_CENTER, beyond), SC_ERROR_INVALID_ARGUMENT);
+  // Each accepted step is bounded, but stacking them is refused.
+  const double big[] = {9e99, -9e99, 9e99};
   EXPECT_EQ(setTransformation(p, SC_POSITION_WORLD_CENTER, big), SC_NO_ERROR);
   const Placement before = p;
   EXPECT_EQ(setTransformation(p, SC_POSITION_LOCAL_CENTER, big), SC_ERROR_INVALID_ARGUMENT);

@@ -5,9 +5,13 @@
 # the first crash, leak, timeout or broken invariant and prints the input's path.
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [BUILD_DIR]
 #        (defaults: 20 and build-asan, the sanitizer build of scripts/test.sh)
+#        SC_FUZZ_SEED=N fixes libFuzzer's seed (scripts/test.sh uses 1, so that the CI
+#        explores the same inputs on every run; unset, each run explores new ones).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-20}"
+seed_option=()
+[[ -n "${SC_FUZZ_SEED:-}" ]] && seed_option=(-seed="$SC_FUZZ_SEED")
 build="$(cd "${2:-$root/build-asan}" && pwd)"
 corpora="$root/tests/fuzz/corpus"
 artifacts="$build/fuzz-artifacts"  # crash inputs outlive the scratch directory
@@ -33,7 +37,7 @@ for exe in "${targets[@]}"; do
   [[ -d "$corpora/$name" ]] && cp -r "$corpora/$name/." "$scratch/$name/"
   log="$scratch/$name.log"
   # -timeout: one input taking this long is a failure (a hang or runaway loop).
-  if "$exe" "$scratch/$name" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2560 \
+  if "$exe" "$scratch/$name" "${seed_option[@]}" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2560 \
        -print_final_stats=1 -artifact_prefix="$artifacts/$name/" >"$log" 2>&1; then
     runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
     secs="$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)"

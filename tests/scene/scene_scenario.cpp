@@ -303,7 +303,7 @@ void count(const std::vector<PairStatus>& pairs, PairCounts& c) {
 }
 
 bool slowBuild() {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__) || !defined(NDEBUG)
+#if SC_TEST_SANITIZED || !defined(NDEBUG)
   return true;
 #else
   return false;

@@ -46,7 +46,9 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
   int k = 0;
   for (; k < settings.max_iterations; ++k) {
     const Rigid pose = poseAt(rotation, center, y);
-    query.contacts(pose, settings.tolerance, contacts_);
+    // Each iteration moves the proxy a little at one rotation: re-evaluate only the
+    // pairs found within twice the tolerance while it stays within the tolerance.
+    query.contactsNear(pose, settings.tolerance, settings.tolerance, contacts_);
     buildRows(query, pose);
     // Rows constrain the pose's translation t = y - R c; shift them to y.
     const Vec3 rc = rotation * center;
@@ -163,7 +165,7 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
                                      ProxyOutcome& out) {
   // Depth against the exact planes (zero skin): unbiased by the skin. A proxy that
   // turned is projected with rotation too, or the skin would stay in its RPDV.
-  query.contacts(proxy_, settings.tolerance, contacts_);
+  query.contactsNear(proxy_, settings.tolerance, settings.tolerance, contacts_);
   const bool turned = settings.rotation_mode != RotationMode::None &&
                       proxy_.rotation != goal.rotation;
   Rigid contact_pose = proxy_;

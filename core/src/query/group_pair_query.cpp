@@ -129,7 +129,7 @@ void GroupPairQuery::bind(const GroupView& target, const GroupView& opponent) {
     caches_.clear();
     seed_ = LeafPair();
   }
-  if (!t_same || !o_same || t_moved || o_moved) known_ = false;
+  if (!t_same || !o_same || t_moved || o_moved) known_ = near_valid_ = false;
   if (!t_same || t_moved) {
     updateGroupSphere();
     t_leaves_valid_ = false;
@@ -482,6 +482,18 @@ struct GroupPairQuery::ContactsPolicy {
   }
 };
 
+namespace {
+
+/// Nearest first, ties by leaf indices: one order whatever found the contacts.
+void sortContacts(std::vector<LeafContact>& contacts) {
+  std::sort(contacts.begin(), contacts.end(), [](const LeafContact& a, const LeafContact& b) {
+    if (a.gap != b.gap) return a.gap < b.gap;
+    return LeafPair{a.t_leaf, a.o_leaf} < LeafPair{b.t_leaf, b.o_leaf};
+  });
+}
+
+}  // namespace
+
 void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
                               std::vector<LeafContact>& out) {
   out.clear();
@@ -493,10 +505,34 @@ void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
   placeTargets(o_from_t);
   ContactsPolicy policy{*this, threshold, out};
   traverse(policy);
-  std::sort(out.begin(), out.end(), [](const LeafContact& a, const LeafContact& b) {
-    if (a.gap != b.gap) return a.gap < b.gap;
-    return LeafPair{a.t_leaf, a.o_leaf} < LeafPair{b.t_leaf, b.o_leaf};
-  });
+  sortContacts(out);
+}
+
+void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, double margin,
+                                  std::vector<LeafContact>& out) {
+  const bool reusable =
+      near_valid_ && o_from_t.rotation == near_pose_.rotation &&
+      (o_from_t.translation - near_pose_.translation).norm() + threshold <= near_reach_;
+  if (!reusable) {
+    contacts(o_from_t, threshold + margin, near_pairs_);
+    near_valid_ = true;
+    near_pose_ = o_from_t;
+    near_reach_ = threshold + margin;
+    out.clear();
+    for (const LeafContact& c : near_pairs_)  // already sorted
+      if (c.gap <= threshold) out.push_back(c);
+    return;
+  }
+  out.clear();
+  counters_ = TraversalCounters();
+  placeTargets(o_from_t);
+  for (const LeafContact& candidate : near_pairs_) {
+    const NodePair p = leafPair(candidate.t_leaf, candidate.o_leaf);
+    bool beyond = false;
+    const LeafContact c = evaluate(p, o_from_piece_[p.t_slot], threshold, beyond);
+    if (!beyond && c.gap <= threshold) out.push_back(c);
+  }
+  sortContacts(out);
 }
 
 struct GroupPairQuery::IntersectPolicy {

@@ -92,6 +92,14 @@ class GroupPairQuery {
   /// to `out` after clearing it, nearest first (ties by leaf indices).
   void contacts(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
 
+  /// contacts() for poses that differ by small translations, as a proxy sliding at a
+  /// fixed rotation makes: one traversal with threshold + `margin` keeps its pairs,
+  /// and later calls at the same rotation within `margin` of that pose evaluate only
+  /// those (a translation by d changes every gap by at most d). Same output as
+  /// contacts().
+  void contactsNear(const Rigid& o_from_t, double threshold, double margin,
+                    std::vector<LeafContact>& out);
+
   /// Closest points of one leaf pair (GJK with its warm start).
   LeafContact pairAt(int t_leaf, int o_leaf, const Rigid& o_from_t);
 
@@ -184,6 +192,11 @@ class GroupPairQuery {
   bool known_ = false;
   Rigid known_pose_;
   double known_gap_ = 0.0;
+  /// contactsNear()'s pairs: every leaf pair within near_reach_ at near_pose_.
+  bool near_valid_ = false;
+  Rigid near_pose_;
+  double near_reach_ = 0.0;
+  std::vector<LeafContact> near_pairs_;
   Vec3 t_center_ = Vec3::Zero();  ///< sphere holding the target group (its frame)
   double t_radius_ = 0.0;
   TraversalCounters counters_;

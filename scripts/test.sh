@@ -54,8 +54,10 @@ SC_FUZZ_SEED="${SC_FUZZ_SEED:-1}" "$root/scripts/fuzz.sh" "$fuzz_seconds" "$root
 echo "== ThreadSanitizer build of the scene tests, and the scene tests"
 (
   use_clang "$root/build-tsan"
+  # Without precompiled headers: also checks that core and scene test files include
+  # what they use.
   configure "$root/build-tsan" "${sanitized[@]}" -DSC_SANITIZE_THREAD=ON \
-    -DSC_BUILD_TOOLS=OFF -DSC_BUILD_BULLET_PLUGIN=OFF
+    -DSC_BUILD_TOOLS=OFF -DSC_BUILD_BULLET_PLUGIN=OFF -DSC_PRECOMPILED_HEADERS=OFF
   cmake --build "$root/build-tsan" -j "$jobs" --target sc_scene_tests
 )
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \

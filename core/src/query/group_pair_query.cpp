@@ -508,12 +508,14 @@ void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
   sortContacts(out);
 }
 
+bool GroupPairQuery::nearCovers(const Rigid& o_from_t, double reach) const {
+  return near_valid_ && o_from_t.rotation == near_pose_.rotation &&
+         (o_from_t.translation - near_pose_.translation).norm() + reach <= near_reach_;
+}
+
 void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, double margin,
                                   std::vector<LeafContact>& out) {
-  const bool reusable =
-      near_valid_ && o_from_t.rotation == near_pose_.rotation &&
-      (o_from_t.translation - near_pose_.translation).norm() + threshold <= near_reach_;
-  if (!reusable) {
+  if (!nearCovers(o_from_t, threshold)) {
     contacts(o_from_t, threshold + margin, near_pairs_);
     near_valid_ = true;
     near_pose_ = o_from_t;
@@ -652,7 +654,19 @@ double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, 
   }
   placeTargets(o_from_t);
   ToiPolicy policy{*this, delta, reach_length, stop_gap, skip};
-  traverse(policy);
+  // A pair that can block starts within this reach. When contactsNear()'s pairs hold
+  // every pair within it, advance only those, nearest first; a pair whose gap (less
+  // the translation since) rules it out is pruned as the traversal would.
+  const double reach = std::max(stop_gap, reach_length + 0.5 * stop_gap);
+  if (!nearCovers(o_from_t, reach)) {
+    traverse(policy);
+    return policy.limit;
+  }
+  const double moved = (o_from_t.translation - near_pose_.translation).norm();
+  for (const LeafContact& candidate : near_pairs_) {
+    if (policy.prunes(candidate.gap - moved)) continue;
+    if (!policy.visit(leafPair(candidate.t_leaf, candidate.o_leaf))) break;
+  }
   return policy.limit;
 }
 

@@ -165,6 +165,8 @@ class GroupPairQuery {
   void placeTargets(const Rigid& o_from_t);
   double sphereBound(const NodePair& p) const;
   double nodeLowerBound(const NodePair& p, double max_distance);
+  /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.
+  bool nearCovers(const Rigid& o_from_t, double reach) const;
   /// GJK on a leaf pair, the target piece placed by `o_from_piece`.
   LeafContact evaluate(const NodePair& p, const Rigid& o_from_piece, double max_distance,
                        bool& beyond);

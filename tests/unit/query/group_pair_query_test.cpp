@@ -306,13 +306,13 @@ TEST_F(GroupPairQueryTest, MovingAPartWithinItsGroupForgetsTheKnownDistance) {
   EXPECT_FALSE(q.counters().shortcut);
 }
 
-TEST_F(GroupPairQueryTest, ContactsNearEqualsContactsAlongASlide) {
+TEST_F(GroupPairQueryTest, ContactsNearAndItsTimeOfImpactEqualTraversalsAlongASlide) {
   GroupPairQuery near, plain;
   near.bind(target_, opponent_);
   plain.bind(target_, opponent_);
-  test::Rng rng(31);
+  test::Rng rng(31), delta_rng(32);
   const double threshold = 0.01, margin = 0.01;
-  int reused = 0, steps = 0, with_contacts = 0;
+  int reused = 0, steps = 0, with_contacts = 0, toi_from_pairs = 0, toi_blocked = 0;
   for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 6); ++run) {
     Rigid pose = randomPose(rng, 0.6);
     for (int k = 0; k < 30; ++k, ++steps) {
@@ -338,13 +338,31 @@ TEST_F(GroupPairQueryTest, ContactsNearEqualsContactsAlongASlide) {
       }
       if (!traversed) ++reused;
       if (!want.empty()) ++with_contacts;
+      // A short translation's time of impact from the kept pairs equals the
+      // traversal's, the closest contacts skipped as a slide skips them.
+      std::vector<LeafPair> skip;
+      for (const LeafContact& c : want)
+        if (c.gap <= 0.0005) skip.push_back({c.t_leaf, c.o_leaf});
+      std::sort(skip.begin(), skip.end());
+      const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
+      const Vec3 delta = 0.008 * ((centre - pose.translation).normalized() +
+                                  0.5 * test::randomDirection(delta_rng));
+      const double s_near = near.translationToi(pose, delta, 0.002, skip);
+      const bool toi_reused = near.counters().node_pairs == 0 && !near.counters().shortcut;
+      const double s_plain = plain.translationToi(pose, delta, 0.002, skip);
+      EXPECT_NEAR(s_near, s_plain, 1e-9);
+      if (toi_reused) ++toi_from_pairs;
+      if (s_plain < 1.0) ++toi_blocked;
     }
   }
+  EXPECT_GT(toi_from_pairs, steps / 3);
+  EXPECT_GT(toi_blocked, steps / 10);
   // Most steps reuse the pairs, and the comparison saw contacts.
   EXPECT_GT(reused, steps / 3);
   EXPECT_GT(with_contacts, steps / 4);
-  std::printf("[ group pair query ] contactsNear: %d of %d steps reused, %d with contacts\n",
-              reused, steps, with_contacts);
+  std::printf("[ group pair query ] contactsNear: %d of %d steps reused, %d with contacts; "
+              "time of impact from the pairs %d times, %d blocked\n",
+              reused, steps, with_contacts, toi_from_pairs, toi_blocked);
 }
 
 TEST(PairCache, KeepsEntriesAndStaysBounded) {

@@ -4,7 +4,10 @@
 // and real meshes resting on each other. --headless runs a fixed time and writes a
 // PNG and JSON metrics.
 #include <btBulletDynamicsCommon.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +32,7 @@ struct Options {
   sc::RotationMode rotation = sc::bullet::defaultQuerySettings().rotation_mode;
   bool headless = false;
   double seconds = 10.0;
+  long steps = 0;  ///< when > 0, overrides seconds (soak runs: bench/soak.sh)
   std::string png, json;
   std::vector<std::string> meshes;
 };
@@ -46,6 +50,24 @@ sc::demo::DrawMesh drawMeshOf(const sc::bullet::ScBulletShape& shape) {
   m.indices = shape.indices();
   return m;
 }
+
+/// Resident set size now [kB] (/proc/self/statm), 0 when unavailable.
+long residentKb() {
+  long pages = 0, resident = 0;
+  FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f == nullptr) return 0;
+  if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+  std::fclose(f);
+  return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+long peakResidentKb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
 sc::MeshData boxMesh(double h) {
   sc::MeshData m;
@@ -104,6 +126,7 @@ class Demo {
       for (int i = 0; i < 10; ++i) addBox(btVector3(0, btScalar(i + 0.5 + (i + 1) * 0.01), 0), 1.0);
     }
     steps_ = 0;
+    non_finite_steps_ = 0;
     step_seconds_ = 0.0;
     max_depth_ = 0.0;
     max_drift_ = 0.0;
@@ -115,16 +138,30 @@ class Demo {
     step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++steps_;
     max_depth_ = std::max(max_depth_, world_->plugin().stats().max_depth);
+    trackSoakMetrics();
     const Body& top = bodies_.back();
     const btVector3 d = top.body->getCenterOfMassPosition() - top.start;
     max_drift_ = std::max(max_drift_, std::sqrt(double(d.x() * d.x() + d.z() * d.z())));
     // RMS velocity over the last second of a fixed run ("at rest").
-    if (options_.headless && steps_ > static_cast<int>((options_.seconds - 1.0) * kHz)) {
+    if (options_.headless && steps_ > static_cast<long>((options_.seconds - 1.0) * kHz)) {
       double s2 = 0;
       for (const Body& b : bodies_) s2 += double(b.body->getLinearVelocity().length2());
       rest_sum_ += s2 / double(bodies_.size());
       ++rest_samples_;
     }
+  }
+
+  /// What a long run must not show: non-finite states, energy gained, memory growth.
+  void trackSoakMetrics() {
+    bool ok = true;
+    for (const Body& b : bodies_)
+      ok = ok && finite(b.body->getCenterOfMassPosition()) && finite(b.body->getLinearVelocity()) &&
+           finite(b.body->getAngularVelocity());
+    if (!ok) ++non_finite_steps_;
+    const double e = energy();
+    if (steps_ == 1) start_energy_ = max_energy_ = e;
+    max_energy_ = std::max(max_energy_, e);
+    if (steps_ == static_cast<long>(kHz)) rss_after_1s_kb_ = residentKb();
   }
 
   void toggleModel() {
@@ -189,15 +226,18 @@ class Demo {
   }
 
   std::string json() const {
-    char buf[1024];
+    char buf[2048];
     std::snprintf(buf, sizeof(buf),
                   "{\n  \"scene\": \"%s\",\n  \"model\": \"%s\",\n  \"bodies\": %zu,\n  \"hz\": %.0f,\n"
-                  "  \"seconds\": %.3f,\n  \"top_drift_m\": %.6f,\n  \"max_penetration_m\": %.6f,\n"
-                  "  \"rms_velocity_at_rest_mps\": %.6g,\n  \"energy_J\": %.6f,\n  \"ms_per_step\": %.4f\n}\n",
+                  "  \"steps\": %ld,\n  \"seconds\": %.3f,\n  \"top_drift_m\": %.6f,\n  \"max_penetration_m\": %.6f,\n"
+                  "  \"rms_velocity_at_rest_mps\": %.6g,\n  \"energy_J\": %.6f,\n  \"ms_per_step\": %.4f,\n"
+                  "  \"non_finite_steps\": %ld,\n  \"max_energy_rise_J\": %.6g,\n"
+                  "  \"rss_after_1s_kB\": %ld,\n  \"rss_end_kB\": %ld,\n  \"peak_rss_kB\": %ld\n}\n",
                   options_.scene.c_str(), options_.model == ContactModel::Potential ? "potential" : "manifold",
-                  bodies_.size(), kHz, steps_ / kHz, max_drift_, max_depth_,
+                  bodies_.size(), kHz, steps_, steps_ / kHz, max_drift_, max_depth_,
                   rest_samples_ ? std::sqrt(rest_sum_ / rest_samples_) : 0.0, energy(),
-                  steps_ ? 1e3 * step_seconds_ / steps_ : 0.0);
+                  steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, non_finite_steps_, max_energy_ - start_energy_,
+                  rss_after_1s_kb_, residentKb(), std::max(peakResidentKb(), residentKb()));
     return buf;
   }
 
@@ -311,8 +351,10 @@ class Demo {
   std::vector<std::unique_ptr<btRigidBody>> rigid_;
   std::vector<Body> bodies_;  ///< the dynamic bodies (metrics)
   Body base_;                 ///< static mesh of the meshes scene
-  int steps_ = 0;
+  long steps_ = 0;
   double step_seconds_ = 0.0, max_depth_ = 0.0, max_drift_ = 0.0;
+  long non_finite_steps_ = 0, rss_after_1s_kb_ = 0;
+  double start_energy_ = 0.0, max_energy_ = 0.0;
   double rest_sum_ = 0.0;
   int rest_samples_ = 0;
 };
@@ -336,6 +378,8 @@ bool parse(int argc, char** argv, Options& o) {
       o.rotation = v == "mix" ? sc::RotationMode::Mix : v == "free" ? sc::RotationMode::Free : sc::RotationMode::Input;
     } else if (a == "--seconds" && value(v)) {
       o.seconds = std::atof(v.c_str());
+    } else if (a == "--steps" && value(v)) {
+      o.steps = std::atol(v.c_str());
     } else if (a == "--png" && value(v)) {
       o.png = v;
     } else if (a == "--json" && value(v)) {
@@ -347,7 +391,7 @@ bool parse(int argc, char** argv, Options& o) {
       std::fprintf(stderr,
                    "usage: %s [--scene tower|pyramid|massratio|meshes] [--model potential|manifold]\n"
                    "          [--rotation input|mix|free]\n"
-                   "          [--mesh BASE.off --mesh BODY.off...] [--headless [--seconds S] [--png F] [--json F]]\n",
+                   "          [--mesh BASE.off --mesh BODY.off...] [--headless [--seconds S | --steps N] [--png F] [--json F]]\n",
                    argv[0]);
       return false;
     }
@@ -360,13 +404,14 @@ bool parse(int argc, char** argv, Options& o) {
 int main(int argc, char** argv) {
   Options options;
   if (!parse(argc, argv, options)) return 2;
+  if (options.steps > 0) options.seconds = static_cast<double>(options.steps) / kHz;
   Demo demo(options);
   sc::demo::ViewerCallbacks cb;
   cb.collect = [&](std::vector<sc::demo::DrawItem>& items) { demo.collect(items); };
   cb.overlay = [&] { return demo.overlay(); };
   if (options.headless) {
-    const int steps = static_cast<int>(std::lround(options.seconds * kHz));
-    for (int i = 0; i < steps; ++i) demo.step();
+    const long steps = options.steps > 0 ? options.steps : std::lround(options.seconds * kHz);
+    for (long i = 0; i < steps; ++i) demo.step();
     const std::string metrics = demo.json();
     std::fputs(metrics.c_str(), stdout);
     if (!options.json.empty()) {

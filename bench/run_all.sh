@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# One command for the evidence: installs what is needed (scripts/setup.sh), builds the
+# benchmarks in Release, runs every one, and regenerates every CSV and chart of
+# docs/benchmarks/ (the figures docs/benchmarks.md quotes).
+# Usage: bench/run_all.sh [OUT_DIR]     (default docs/benchmarks; no input needed)
+#        SC_BENCH_SOAK=1 also runs bench/soak.sh (about 20 minutes more).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+out="$(mkdir -p "${1:-$root/docs/benchmarks}" && cd "${1:-$root/docs/benchmarks}" && pwd)"
+build="$root/build-bench"
+jobs="${SC_JOBS:-$(nproc)}"
+
+"$root/scripts/setup.sh"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSC_BUILD_TESTS=OFF \
+  -DSC_BUILD_TOOLS=OFF
+cmake --build "$build" -j "$jobs"
+
+run() {  # run <name> <command...>: timed, output kept next to the CSVs
+  local name="$1"; shift
+  local start=$SECONDS
+  echo "== $name"
+  "$@" > "$out/$name.log" 2>&1 || { echo "$name failed; see $out/$name.log" >&2; exit 1; }
+  echo "   $((SECONDS - start)) s"
+}
+run mesh_distance "$build/bench/mesh_distance" --csv="$out/mesh_distance.csv"
+run penetration_depth "$build/bench/penetration_depth" --csv-dir="$out"
+run scene_scaling "$build/bench/scene_scaling" --csv="$out/scene_scaling.csv"
+if [[ "${SC_BENCH_SOAK:-0}" == 1 ]]; then
+  echo "== soak"
+  "$root/bench/soak.sh" 1000000 potential "$build" > "$out/soak.csv"
+fi
+
+echo "== charts"
+cd "$root"
+gnuplot -e "csv='$out/penetration_haptic_steps.csv'; png='$out/penetration_haptic.png'" \
+  bench/plot_penetration_haptic.gp
+gnuplot -e "csv='$out/penetration_sweep.csv'; png='$out/penetration_sweep.png'" \
+  bench/plot_penetration_sweep.gp
+gnuplot -e "csv='$out/scene_scaling.csv'; png='$out/scene_scaling.png'" \
+  bench/plot_scene_scaling.gp
+echo "== done: $out"

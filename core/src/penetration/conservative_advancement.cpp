@@ -28,8 +28,14 @@ double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap
     reach_rho = std::max(reach_rho, (leaf.center - y0_local).norm() + leaf.radius);
   const double reach = motion.dc.norm() + angle * reach_rho + stop_gap;
   query.contacts(motion.start, reach, scratch);
+  // No point moves farther than `sweep` per unit of s: a pair whose gap exceeds
+  // stop_gap + limit * sweep cannot block before `limit`. The candidates come nearest
+  // first, so the first such pair ends the search (a long motion may gather
+  // thousands of candidates, of which the nearest few decide).
+  const double sweep = motion.dc.norm() + angle * reach_rho;
   double limit = 1.0;
   for (const LeafContact& cand : scratch) {
+    if (cand.gap > stop_gap + limit * sweep) break;
     if (cand.intersecting) continue;
     if (std::binary_search(skip.begin(), skip.end(), LeafPair{cand.t_leaf, cand.o_leaf}))
       continue;

@@ -8,3 +8,4 @@
 #include "smartcollision/bullet/sc_collision_algorithm.h"
 #include "smartcollision/bullet/sc_dynamics_world.h"
 #include "smartcollision/bullet/settings.h"
+#include "smartcollision/bullet/virtual_coupling.h"

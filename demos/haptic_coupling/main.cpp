@@ -1,0 +1,773 @@
+// SPDX-License-Identifier: MIT
+// Haptic coupling demo (manual 9-10.3 on Bullet): a 6-DOF device drives one rigid
+// body through a virtual spring-damper. Three loops:
+//   haptic thread   1 kHz: poll the device, compute the coupling reaction from the
+//                   latest body state, hand it to the device;
+//   physics thread  1 kHz, 500 Hz for the cavity (--physics-hz): apply the coupling to the body
+//   with the
+//                   latest device pose, step Bullet + SmartCollision;
+//   graphics        the GLUT loop in the main thread (not run with --headless).
+// Poses and body states pass through seqlocks (lock-free for the reader and the
+// single writer). Scenes: `peg` (square peg into a block with a square through-hole,
+// 2 mm clearance per side) and `cavity` (the bunny, 75k triangles, into a cup).
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../common/device.h"
+#include "../common/off_mesh.h"
+#include "../common/viewer.h"
+#include "smartcollision/bullet/bullet.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using sc::Quat;
+using sc::Vec3;
+
+constexpr double kHapticHz = 1000.0;
+constexpr double kMaxDeviceSpeed = 0.1;  ///< [m/s] the scripted runs stay below (force-jump bound)
+/// Haptic samples after a missed deadline (either loop) that the force-jump bound does
+/// not cover: the coupling's time constant (1 / omega, about 3 ms) several times over.
+constexpr int kSettleSamples = 20;
+
+/// Single writer, any number of readers; N doubles, every word atomic (no data race).
+template <std::size_t N>
+class SeqLock {
+ public:
+  void write(const std::array<double, N>& v) {
+    const unsigned s = seq_.load(std::memory_order_relaxed);
+    seq_.store(s + 1, std::memory_order_relaxed);
+    std::atomic_thread_fence(std::memory_order_release);
+    for (std::size_t i = 0; i < N; ++i) data_[i].store(v[i], std::memory_order_relaxed);
+    seq_.store(s + 2, std::memory_order_release);
+  }
+  /// False until the first write.
+  bool read(std::array<double, N>& out) const {
+    for (;;) {
+      const unsigned s0 = seq_.load(std::memory_order_acquire);
+      if (s0 == 0) return false;
+      if (s0 & 1u) continue;
+      for (std::size_t i = 0; i < N; ++i) out[i] = data_[i].load(std::memory_order_relaxed);
+      std::atomic_thread_fence(std::memory_order_acquire);
+      if (seq_.load(std::memory_order_relaxed) == s0) return true;
+    }
+  }
+
+ private:
+  std::atomic<unsigned> seq_{0};
+  std::array<std::atomic<double>, N> data_{};
+};
+
+using PoseWords = std::array<double, 7>;    // x y z qw qx qy qz
+using StateWords = std::array<double, 14>;  // pose, v, w, physics step count
+
+PoseWords wordsOf(const sc::bullet::CouplingPose& p) {
+  return {p.position.x(),    p.position.y(),    p.position.z(),   p.orientation.w(),
+          p.orientation.x(), p.orientation.y(), p.orientation.z()};
+}
+sc::bullet::CouplingPose poseOf(const double* w) {
+  sc::bullet::CouplingPose p;
+  p.position = Vec3(w[0], w[1], w[2]);
+  p.orientation = Quat(w[3], w[4], w[5], w[6]).normalized();
+  return p;
+}
+StateWords wordsOf(const sc::bullet::BodyState& s) {
+  StateWords w{};
+  const PoseWords p = wordsOf(s.pose);
+  std::copy(p.begin(), p.end(), w.begin());
+  for (int k = 0; k < 3; ++k) {
+    w[std::size_t(7 + k)] = s.linear_velocity[k];
+    w[std::size_t(10 + k)] = s.angular_velocity[k];
+  }
+  return w;
+}
+sc::bullet::BodyState stateOf(const StateWords& w) {
+  sc::bullet::BodyState s;
+  s.pose = poseOf(w.data());
+  s.linear_velocity = Vec3(w[7], w[8], w[9]);
+  s.angular_velocity = Vec3(w[10], w[11], w[12]);
+  return s;
+}
+
+struct Options {
+  std::string scene = "peg";
+  std::string device = "mouse";
+  bool headless = false;
+  double seconds = 0.0;     ///< 0: the script's length + 1 s (headless), unlimited otherwise
+  double physics_hz = 0.0;  ///< 0: 1000 Hz for peg, 500 Hz for cavity (75k triangles)
+  std::string png, json;
+  std::string wrench_log;  ///< script device: the rendered wrenches, one line per sample
+};
+
+sc::MeshData boxMesh(const Vec3& h) {
+  sc::MeshData m;
+  for (int i = 0; i < 8; ++i)
+    m.vertices.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
+  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return m;
+}
+
+/// Ring of four corners (x, z) = (+-a, +-a) at height y, counter-clockwise seen from +y.
+void addRing(sc::MeshData& m, double a, double y) {
+  m.vertices.emplace_back(-a, y, -a);
+  m.vertices.emplace_back(-a, y, a);
+  m.vertices.emplace_back(a, y, a);
+  m.vertices.emplace_back(a, y, -a);
+}
+
+/// Triangle (a, b, c) wound so that its normal points along `out`.
+void addFacing(sc::MeshData& m, int a, int b, int c, const Vec3& out) {
+  const Vec3& pa = m.vertices[std::size_t(a)];
+  const Vec3 n = (m.vertices[std::size_t(b)] - pa).cross(m.vertices[std::size_t(c)] - pa);
+  if (n.dot(out) >= 0.0)
+    m.triangles.emplace_back(a, b, c);
+  else
+    m.triangles.emplace_back(a, c, b);
+}
+
+/// Quad strip between rings r0 and r1 (4 vertices each). Horizontal strips face
+/// `facing` = +1 (up) or -1 (down); walls face away from the y axis (`facing` = 0)
+/// or towards it (`facing` = 2, the hole's walls).
+void joinRings(sc::MeshData& m, int r0, int r1, int facing) {
+  for (int i = 0; i < 4; ++i) {
+    const int a = r0 + i, b = r0 + (i + 1) % 4, c = r1 + (i + 1) % 4, d = r1 + i;
+    Vec3 out;
+    if (facing == 1 || facing == -1) {
+      out = Vec3(0, facing, 0);
+    } else {
+      const Vec3 mid = 0.25 * (m.vertices[std::size_t(a)] + m.vertices[std::size_t(b)] +
+                               m.vertices[std::size_t(c)] + m.vertices[std::size_t(d)]);
+      out = Vec3(mid.x(), 0, mid.z()) * (facing == 2 ? -1.0 : 1.0);
+    }
+    addFacing(m, a, b, c, out);
+    addFacing(m, a, c, d, out);
+  }
+}
+
+/// A square block (half width `outer`, from y = 0 to `height`) with a square hole of
+/// half width `hole` along y: a through-hole when `floor` is 0, else a pocket with a
+/// floor of that thickness. One closed (genus 1 or 0) non-convex polyhedron.
+sc::MeshData holedBlock(double outer, double hole, double height, double floor) {
+  sc::MeshData m;
+  addRing(m, outer, height);  // 0: outer top
+  addRing(m, hole, height);   // 4: hole top
+  addRing(m, hole, floor);    // 8: hole bottom (or pocket floor)
+  addRing(m, outer, 0.0);     // 12: outer bottom
+  joinRings(m, 0, 4, 1);      // top face between the rings
+  joinRings(m, 4, 8, 2);      // hole walls
+  joinRings(m, 12, 0, 0);     // outer walls
+  if (floor <= 0.0) {
+    joinRings(m, 8, 12, -1);  // bottom face between the rings
+  } else {
+    addFacing(m, 8, 9, 10, Vec3(0, 1, 0));  // pocket floor
+    addFacing(m, 8, 10, 11, Vec3(0, 1, 0));
+    addFacing(m, 12, 13, 14, Vec3(0, -1, 0));  // outer bottom
+    addFacing(m, 12, 14, 15, Vec3(0, -1, 0));
+  }
+  return m;
+}
+
+/// Scales a mesh so that its largest AABB extent is `size`, centred on its box.
+sc::MeshData normalised(sc::MeshData m, double size) {
+  sc::Aabb box;
+  for (const Vec3& v : m.vertices) box.extend(v);
+  const double extent = (box.max - box.min).maxCoeff();
+  const Vec3 c = 0.5 * (box.min + box.max);
+  for (Vec3& v : m.vertices) v = (v - c) * (size / (extent > 0 ? extent : 1.0));
+  return m;
+}
+
+sc::demo::DrawMesh drawMeshOf(const sc::bullet::ScBulletShape& shape) {
+  sc::demo::DrawMesh m;
+  for (const btVector3& v : shape.vertices())
+    m.vertices.insert(m.vertices.end(), {float(v.x()), float(v.y()), float(v.z())});
+  m.indices = shape.indices();
+  return m;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t i = std::min(v.size() - 1, std::size_t(p * double(v.size() - 1) + 0.5));
+  return v[i];
+}
+
+class Demo {
+ public:
+  explicit Demo(const Options& o, std::unique_ptr<sc::demo::Device> device)
+      : options_(o), device_(std::move(device)), physics_dt_(1.0 / o.physics_hz) {
+    config_ =
+        std::make_unique<btDefaultCollisionConfiguration>(sc::bullet::collisionConstructionInfo());
+    dispatcher_ = std::make_unique<btCollisionDispatcher>(config_.get());
+    auto plugin = sc::bullet::registerSmartCollision(dispatcher_.get(), {});
+    if (!plugin.ok()) fail("registerSmartCollision: " + plugin.status().message());
+    broadphase_ = std::make_unique<btDbvtBroadphase>();
+    solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+    world_ = std::make_unique<sc::bullet::ScDynamicsWorld>(
+        dispatcher_.get(), broadphase_.get(), solver_.get(), config_.get(), plugin.value());
+    world_->setGravity(btVector3(0, -9.81f, 0));
+    if (o.scene == "cavity")
+      buildCavity();
+    else
+      buildPeg();
+    design_.physics_dt = physics_dt_;
+    design_.haptic_dt = 1.0 / kHapticHz;
+    coupling_ = std::make_unique<sc::bullet::VirtualCoupling>(
+        sc::bullet::designCouplingGains(*tool_, design_));
+    passivity_ = sc::bullet::checkPassivity(coupling_->gains(), design_);
+    sc::demo::DevicePose home;
+    for (int k = 0; k < 3; ++k) home.position[k] = tool_home_[k];
+    device_->setHome(home);
+    sc::bullet::CouplingPose home_pose;
+    home_pose.position = tool_home_;
+    device_pose_.write(wordsOf(home_pose));
+    body_state_.write(wordsOf(sc::bullet::bodyStateOf(*tool_)));
+  }
+
+  ~Demo() {
+    stop();
+    for (auto& b : rigid_) world_->removeRigidBody(b.get());
+  }
+
+  void start() {
+    start_time_ = rate_time_ = Clock::now();
+    running_ = true;
+    physics_ = std::thread([this] { physicsLoop(); });
+    haptic_ = std::thread([this] { hapticLoop(); });
+  }
+
+  void stop() {
+    running_ = false;
+    if (haptic_.joinable()) haptic_.join();
+    if (physics_.joinable()) physics_.join();
+    elapsed_ = std::chrono::duration<double>(Clock::now() - start_time_).count();
+  }
+
+  sc::demo::Device& device() { return *device_; }
+  double defaultSeconds() const { return scriptLength() > 0 ? scriptLength() + 1.0 : 10.0; }
+
+  void collect(std::vector<sc::demo::DrawItem>& items) {
+    ++frames_;
+    auto push = [&](const sc::demo::DrawMesh* mesh, const btTransform& t, const float* color,
+                    float scale) {
+      sc::demo::DrawItem item;
+      item.mesh = mesh;
+      btScalar m[16];
+      t.getOpenGLMatrix(m);
+      for (int i = 0; i < 16; ++i)
+        item.matrix[i] = float(m[i]) * (i < 12 && i % 4 < 3 ? scale : 1.0f);
+      std::memcpy(item.color, color, sizeof(item.color));
+      items.push_back(item);
+    };
+    const float ground_color[3] = {0.55f, 0.6f, 0.65f};
+    btTransform ground(btQuaternion::getIdentity(), btVector3(0, -0.01f, 0));
+    sc::demo::DrawItem g;
+    g.mesh = &cube_mesh_;
+    btScalar gm[16];
+    ground.getOpenGLMatrix(gm);
+    for (int i = 0; i < 16; ++i) g.matrix[i] = float(gm[i]);
+    g.matrix[0] = 0.3f;  // unit cube stretched to a 0.6 x 0.02 x 0.6 m slab
+    g.matrix[5] = 0.01f;
+    g.matrix[10] = 0.3f;
+    std::memcpy(g.color, ground_color, sizeof(g.color));
+    items.push_back(g);
+    push(&fixed_mesh_, fixed_->getWorldTransform(), fixed_color_, 1.0f);
+    StateWords w{};
+    body_state_.read(w);
+    const sc::bullet::BodyState s = stateOf(w);
+    const btTransform body(
+        btQuaternion(btScalar(s.pose.orientation.x()), btScalar(s.pose.orientation.y()),
+                     btScalar(s.pose.orientation.z()), btScalar(s.pose.orientation.w())),
+        btVector3(btScalar(s.pose.position.x()), btScalar(s.pose.position.y()),
+                  btScalar(s.pose.position.z())));
+    push(&tool_mesh_, body, tool_color_, 1.0f);
+    PoseWords d{};
+    device_pose_.read(d);
+    const float ghost[3] = {0.2f, 0.75f, 0.3f};
+    push(&cube_mesh_,
+         btTransform(btQuaternion(btScalar(d[4]), btScalar(d[5]), btScalar(d[6]), btScalar(d[3])),
+                     btVector3(btScalar(d[0]), btScalar(d[1]), btScalar(d[2]))),
+         ghost, 0.006f);
+  }
+
+  std::string overlay() {
+    const auto now = Clock::now();
+    const double dt = std::chrono::duration<double>(now - rate_time_).count();
+    if (!running_ && elapsed_ > 0.0) {  // a finished headless run: its mean rates
+      haptic_rate_ = double(haptic_count_.load()) / elapsed_;
+      physics_rate_ = double(physics_count_.load()) / elapsed_;
+      frame_rate_ = 0.0;
+    } else if (dt >= 0.5) {
+      const long h = haptic_count_.load(), p = physics_count_.load(), f = frames_;
+      haptic_rate_ = double(h - rate_haptic_) / dt;
+      physics_rate_ = double(p - rate_physics_) / dt;
+      frame_rate_ = double(f - rate_frames_) / dt;
+      rate_haptic_ = h;
+      rate_physics_ = p;
+      rate_frames_ = f;
+      rate_time_ = now;
+    }
+    char fps[32];
+    std::snprintf(fps, sizeof(fps), "%.0f fps", frame_rate_);
+    const std::string graphics =
+        !running_ && elapsed_ > 0.0 ? std::string("(headless run)") : std::string(fps);
+    char buf[768];
+    std::snprintf(
+        buf, sizeof(buf),
+        "scene %s   device %s\n"
+        "haptic %.0f Hz   physics %.0f Hz   graphics %s\n"
+        "coupling force %.1f N (max %.0f N)   max depth %.2f mm   energy generated %.2e J\n%s",
+        options_.scene.c_str(), device_->name(), haptic_rate_, physics_rate_, graphics.c_str(),
+        last_force_.load(), coupling_->gains().max_force, 1e3 * max_depth_.load(),
+        generated_.load(), device_->status().c_str());
+    return buf;
+  }
+
+  std::string json() const {
+    std::vector<double> periods_ms;
+    periods_ms.reserve(periods_.size());
+    for (double p : periods_) periods_ms.push_back(1e3 * p);
+    const double pmax =
+        periods_ms.empty() ? 0.0 : *std::max_element(periods_ms.begin(), periods_ms.end());
+    const sc::bullet::CouplingGains& g = coupling_->gains();
+    const sc::bullet::BodyState s = sc::bullet::bodyStateOf(*tool_);
+    // Nominal bound: one haptic period of device motion, one physics step of the body.
+    const double jump_bound =
+        sc::bullet::forceJumpBound(g, kMaxDeviceSpeed, 1.0 / kHapticHz, physics_dt_);
+    const Vec3 r =
+        sc::bullet::rotationVector(s.pose.orientation * grip_rotation_.conjugate());  // mesh frame
+    char buf[3072];
+    std::snprintf(
+        buf, sizeof(buf),
+        "{\n  \"scene\": \"%s\",\n  \"device\": \"%s\",\n  \"tool_triangles\": %zu,\n  "
+        "\"fixed_triangles\": %zu,\n"
+        "  \"seconds\": %.3f,\n  \"haptic_samples\": %ld,\n  \"haptic_rate_hz\": %.1f,\n"
+        "  \"haptic_period_p50_ms\": %.4f,\n  \"haptic_period_p99_ms\": %.4f,\n  "
+        "\"haptic_period_max_ms\": %.4f,\n"
+        "  \"physics_steps\": %ld,\n  \"physics_rate_hz\": %.1f,\n  \"physics_ms_per_step\": "
+        "%.4f,\n  \"physics_step_max_ms\": %.3f,\n"
+        "  \"gains\": {\"k_t\": %.1f, \"b_t\": %.2f, \"k_r\": %.4f, \"b_r\": %.5f, \"max_force\": "
+        "%.2f, "
+        "\"max_torque\": %.4f},\n"
+        "  \"passivity_body_margin\": %.2f,\n  \"required_device_damping\": %.3f,\n"
+        "  \"max_force_jump_N\": %.4f,\n  \"force_jump_bound_N\": %.4f,\n  "
+        "\"max_force_jump_ratio\": %.4f,\n  \"max_force_jump_any_N\": %.4f,\n  "
+        "\"samples_after_missed_deadline\": %ld,\n  "
+        "\"max_coupling_force_N\": %.4f,\n"
+        "  \"energy_generated_J\": %.6g,\n  \"energy_generated_max_J\": %.6g,\n  "
+        "\"coupling_work_on_body_J\": %.6g,\n"
+        "  \"device_work_J\": %.6g,\n  \"spring_energy_J\": %.6g,\n  \"kinetic_energy_change_J\": "
+        "%.6g,\n"
+        "  \"max_penetration_m\": %.6f,\n  \"final_position\": [%.5f, %.5f, %.5f],\n"
+        "  \"final_rotation_vector\": [%.5f, %.5f, %.5f],\n  \"inserted_depth_m\": %.5f,\n  "
+        "\"inside\": %s\n}\n",
+        options_.scene.c_str(), device_->name(), tool_triangles_, fixed_triangles_, elapsed_,
+        long(periods_.size()) + 1, elapsed_ > 0 ? double(haptic_count_.load()) / elapsed_ : 0.0,
+        percentile(periods_ms, 0.5), percentile(periods_ms, 0.99), pmax, physics_count_.load(),
+        elapsed_ > 0 ? double(physics_count_.load()) / elapsed_ : 0.0,
+        physics_count_.load() ? 1e3 * step_seconds_ / double(physics_count_.load()) : 0.0,
+        1e3 * step_max_, g.linear_stiffness, g.linear_damping, g.angular_stiffness,
+        g.angular_damping, g.max_force, g.max_torque, passivity_.body_margin,
+        passivity_.required_device_damping, max_jump_, jump_bound, max_jump_ratio_, max_jump_any_,
+        unchecked_samples_, max_coupling_force_, monitor_.generated(), monitor_.maxGenerated(),
+        monitor_.bodyWork(), monitor_.deviceWork(), monitor_.springEnergy(),
+        monitor_.kineticEnergyChange(), max_depth_.load(), s.pose.position.x(), s.pose.position.y(),
+        s.pose.position.z(), r.x(), r.y(), r.z(), insertedDepth(s), inside(s) ? "true" : "false");
+    return buf;
+  }
+
+  float targetY() const { return 0.07f; }
+  float distance() const { return 0.55f; }
+
+ private:
+  [[noreturn]] static void fail(const std::string& what) {
+    std::fprintf(stderr, "%s\n", what.c_str());
+    std::exit(1);
+  }
+
+  std::shared_ptr<sc::bullet::ScBulletShape> makeShape(const sc::MeshData& mesh,
+                                                       sc::ModelKind kind) {
+    sc::bullet::ShapeOptions options;
+    options.aabb_margin = 0.005;
+    auto s = sc::bullet::ScBulletShape::create(kind, mesh, options);
+    if (!s.ok()) {
+      std::fprintf(stderr, "shape: %s\n", s.status().message().c_str());
+      return nullptr;
+    }
+    shapes_.push_back(s.value());
+    return s.value();
+  }
+
+  /// A body whose input mesh frame is at `world_from_mesh`.
+  btRigidBody* addRigid(const sc::bullet::ScBulletShape& shape, double mass,
+                        const btTransform& world_from_mesh) {
+    btVector3 inertia(0, 0, 0);
+    if (mass > 0) shape.calculateLocalInertia(btScalar(mass), inertia);
+    btRigidBody::btRigidBodyConstructionInfo ci(
+        btScalar(mass), nullptr, const_cast<sc::bullet::ScBulletShape*>(&shape), inertia);
+    ci.m_startWorldTransform = world_from_mesh * shape.meshFromShape();
+    rigid_.push_back(std::make_unique<btRigidBody>(ci));
+    btRigidBody* b = rigid_.back().get();
+    b->setActivationState(DISABLE_DEACTIVATION);
+    world_->addRigidBody(b);
+    return b;
+  }
+
+  /// The held tool: no gravity (the device carries it), coupled to the device.
+  void setTool(btRigidBody* body, const sc::bullet::ScBulletShape& shape) {
+    tool_ = body;
+    const btTransform& g = shape.meshFromShape();
+    grip_position_ =
+        Vec3(double(g.getOrigin().x()), double(g.getOrigin().y()), double(g.getOrigin().z()));
+    const btQuaternion q = g.getRotation();
+    grip_rotation_ = Quat(double(q.w()), double(q.x()), double(q.y()), double(q.z())).normalized();
+    tool_->setFlags(tool_->getFlags() | BT_DISABLE_WORLD_GRAVITY);
+    tool_->setGravity(btVector3(0, 0, 0));
+  }
+
+  void buildCommon() {
+    auto cube = makeShape(boxMesh(Vec3(1, 1, 1)), sc::ModelKind::ClosedPolyhedron);
+    cube_mesh_ = drawMeshOf(*cube);
+  }
+
+  // Peg scene: block 200 x 80 x 200 mm with a 50 mm square through-hole, top at
+  // y = 80 mm; peg 46 x 120 x 46 mm, 0.5 kg.
+  void buildPeg() {
+    buildCommon();
+    hole_half_ = 0.025;
+    block_top_ = 0.08;
+    auto block =
+        makeShape(holedBlock(0.1, hole_half_, block_top_, 0.0), sc::ModelKind::ClosedPolyhedron);
+    if (!block) fail("holed block: not a valid closed polyhedron");
+    fixed_ = addRigid(*block, 0.0, btTransform::getIdentity());
+    fixed_mesh_ = drawMeshOf(*block);
+    fixed_triangles_ = block->indices().size() / 3;
+    tool_half_ = Vec3(0.023, 0.06, 0.023);
+    auto peg = makeShape(boxMesh(tool_half_), sc::ModelKind::ClosedPolyhedron);
+    tool_home_ = Vec3(0, 0.17, 0);
+    setTool(addRigid(*peg, 0.5, btTransform(btQuaternion::getIdentity(), btVector3(0, 0.17f, 0))),
+            *peg);
+    tool_mesh_ = drawMeshOf(*peg);
+    tool_triangles_ = peg->indices().size() / 3;
+  }
+
+  // Cavity scene: a cup 200 x 120 x 200 mm with a 140 mm square pocket 80 mm deep;
+  // the bunny (bunny00.off, 75k triangles) scaled to 100 mm, 0.5 kg.
+  void buildCavity() {
+    buildCommon();
+    hole_half_ = 0.07;
+    block_top_ = 0.12;
+    auto cup =
+        makeShape(holedBlock(0.1, hole_half_, block_top_, 0.04), sc::ModelKind::ClosedPolyhedron);
+    if (!cup) fail("cup: not a valid closed polyhedron");
+    fixed_ = addRigid(*cup, 0.0, btTransform::getIdentity());
+    fixed_mesh_ = drawMeshOf(*cup);
+    fixed_triangles_ = cup->indices().size() / 3;
+    sc::MeshData bunny = sc::demo::readOff(SC_DEMO_MESH_DIR "/bunny00.off");
+    if (bunny.triangles.empty())
+      fail("cannot read " SC_DEMO_MESH_DIR "/bunny00.off (run scripts/setup.sh)");
+    bunny = normalised(std::move(bunny), 0.1);
+    auto tool = makeShape(bunny, sc::ModelKind::ClosedPolyhedron);
+    if (!tool) tool = makeShape(bunny, sc::ModelKind::TriangleSoup);
+    if (!tool) fail("bunny: cannot build the model");
+    btVector3 lo, hi;
+    tool->getAabb(btTransform::getIdentity(), lo, hi);
+    tool_half_ = Vec3(0.5 * double(hi.x() - lo.x()), 0.5 * double(hi.y() - lo.y()),
+                      0.5 * double(hi.z() - lo.z())) -
+                 Vec3::Constant(tool->aabbMargin());
+    tool_home_ = Vec3(0, 0.2, 0);
+    setTool(addRigid(*tool, 0.5, btTransform(btQuaternion::getIdentity(), btVector3(0, 0.2f, 0))),
+            *tool);
+    tool_mesh_ = drawMeshOf(*tool);
+    tool_triangles_ = tool->indices().size() / 3;
+    tool_color_[0] = 0.85f;
+    tool_color_[1] = 0.7f;
+    tool_color_[2] = 0.45f;
+  }
+
+  /// The device holds the tool's mesh frame; the coupling pulls the body (shape frame).
+  sc::bullet::CouplingPose bodyTarget(const sc::bullet::CouplingPose& device) const {
+    sc::bullet::CouplingPose t;
+    t.position = device.position + device.orientation * grip_position_;
+    t.orientation = (device.orientation * grip_rotation_).normalized();
+    return t;
+  }
+
+  double scriptLength() const {
+    const std::string prefix = "script:";
+    if (options_.device.compare(0, prefix.size(), prefix) != 0) return 0.0;
+    auto s = sc::bullet::PoseScript::load(options_.device.substr(prefix.size()));
+    return s.ok() ? s.value().duration() : 0.0;
+  }
+
+  /// How far the tool's lowest point is below the top of the block [m].
+  double insertedDepth(const sc::bullet::BodyState& s) const {
+    return block_top_ - (s.pose.position.y() - tool_half_.y());
+  }
+  /// Peg: centre within the hole's clearance (+1 mm), at least 20 mm below the top.
+  /// Cavity: the tool's box within the pocket's walls and below its rim.
+  bool inside(const sc::bullet::BodyState& s) const {
+    const double lateral = std::max(std::abs(s.pose.position.x()), std::abs(s.pose.position.z()));
+    if (options_.scene == "cavity")
+      return lateral + std::max(tool_half_.x(), tool_half_.z()) <= hole_half_ + 0.002 &&
+             s.pose.position.y() + tool_half_.y() <= block_top_ + 0.02 && insertedDepth(s) > 0.04;
+    return lateral <= hole_half_ - tool_half_.x() + 0.001 && insertedDepth(s) >= 0.02;
+  }
+
+  void physicsLoop() {
+    auto next = Clock::now();
+    const auto period =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(physics_dt_));
+    while (running_) {
+      next += period;
+      PoseWords d{};
+      device_pose_.read(d);
+      const sc::bullet::CouplingPose device = bodyTarget(poseOf(d.data()));
+      const auto t0 = Clock::now();
+      const sc::bullet::CouplingWrench w = coupling_->apply(device, *tool_);
+      monitor_.beforeStep(*coupling_, device, *tool_, w);
+      world_->stepSimulation(btScalar(physics_dt_), 1, btScalar(physics_dt_));
+      monitor_.afterStep(*tool_);
+      const double step = std::chrono::duration<double>(Clock::now() - t0).count();
+      step_seconds_ += step;
+      step_max_ = std::max(step_max_, step);
+      max_depth_ = std::max(max_depth_.load(), world_->plugin().stats().max_depth);
+      generated_ = monitor_.generated();
+      StateWords state = wordsOf(sc::bullet::bodyStateOf(*tool_));
+      state[13] = double(physics_count_.load() + 1);
+      body_state_.write(state);
+      ++physics_count_;
+      const auto now = Clock::now();
+      if (next > now)
+        std::this_thread::sleep_until(next);
+      else if (now - next > 20 * period)
+        next = now;  // far behind: do not try to catch up in a burst
+    }
+  }
+
+  void hapticLoop() {
+    const auto period =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kHapticHz));
+    auto next = Clock::now();
+    Clock::time_point last;
+    bool first = true;
+    Vec3 previous = Vec3::Zero();
+    double previous_steps = 0.0;
+    periods_.reserve(1 << 16);
+    while (running_) {
+      const auto now = Clock::now();
+      const double interval = std::chrono::duration<double>(now - last).count();
+      if (!first) periods_.push_back(interval);
+      last = now;
+      sc::demo::DevicePose p;
+      if (device_->poll(p)) {
+        sc::bullet::CouplingPose pose;
+        pose.position = Vec3(p.position[0], p.position[1], p.position[2]);
+        pose.orientation =
+            Quat(p.orientation[0], p.orientation[1], p.orientation[2], p.orientation[3])
+                .normalized();
+        device_pose_.write(wordsOf(pose));
+        StateWords s{};
+        body_state_.read(s);
+        const sc::bullet::CouplingWrench r = coupling_->reaction(bodyTarget(pose), stateOf(s));
+        sc::demo::Wrench out;
+        for (int k = 0; k < 3; ++k) {
+          out.force[k] = r.force[k];
+          out.torque[k] = r.torque[k];
+        }
+        device_->render(out);
+        if (!first) {
+          // The bound for this pair of samples: the device moved for `interval`, the
+          // body for the physics steps taken in between. It assumes both loops keep
+          // their rates: after a missed deadline the body catches up faster than the
+          // bound's speed, so pairs within kSettleSamples of one are only counted.
+          const double body_interval = (s[13] - previous_steps) * physics_dt_;
+          if (interval > 1.5 / kHapticHz || body_interval > 2.5 * physics_dt_) since_miss_ = 0;
+          const double jump = (r.force - previous).norm();
+          max_jump_any_ = std::max(max_jump_any_, jump);
+          if (since_miss_ < kSettleSamples) {
+            ++since_miss_;
+            ++unchecked_samples_;
+          } else {
+            const double bound = sc::bullet::forceJumpBound(coupling_->gains(), kMaxDeviceSpeed,
+                                                            interval, body_interval);
+            max_jump_ = std::max(max_jump_, jump);
+            max_jump_ratio_ = std::max(max_jump_ratio_, jump / bound);
+          }
+        }
+        previous_steps = s[13];
+        max_coupling_force_ = std::max(max_coupling_force_, r.force.norm());
+        last_force_ = r.force.norm();
+        previous = r.force;
+      }
+      first = false;
+      ++haptic_count_;
+      next += period;
+      std::this_thread::sleep_until(next);
+      if (Clock::now() - next > 20 * period) next = Clock::now();
+    }
+  }
+
+  Options options_;
+  std::unique_ptr<sc::demo::Device> device_;
+  double physics_dt_;
+  std::unique_ptr<btDefaultCollisionConfiguration> config_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btBroadphaseInterface> broadphase_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<sc::bullet::ScDynamicsWorld> world_;
+  std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> rigid_;
+  btRigidBody* tool_ = nullptr;
+  btRigidBody* fixed_ = nullptr;
+  sc::demo::DrawMesh tool_mesh_, fixed_mesh_, cube_mesh_;
+  float tool_color_[3] = {0.85f, 0.45f, 0.25f};
+  float fixed_color_[3] = {0.45f, 0.55f, 0.75f};
+  std::size_t tool_triangles_ = 0, fixed_triangles_ = 0;
+  Vec3 tool_half_ = Vec3::Zero();
+  Vec3 tool_home_ = Vec3::Zero();      ///< the tool's mesh frame at the start
+  Vec3 grip_position_ = Vec3::Zero();  ///< the tool's shape frame in its mesh frame
+  Quat grip_rotation_ = Quat::Identity();
+  double hole_half_ = 0.0, block_top_ = 0.0;
+
+  sc::bullet::CouplingDesign design_;
+  std::unique_ptr<sc::bullet::VirtualCoupling> coupling_;
+  sc::bullet::PassivityReport passivity_;
+  sc::bullet::CouplingEnergyMonitor monitor_;  ///< physics thread
+
+  SeqLock<7> device_pose_;  ///< haptic -> physics, graphics
+  SeqLock<14> body_state_;  ///< physics -> haptic, graphics
+  std::atomic<bool> running_{false};
+  std::thread physics_, haptic_;
+  Clock::time_point start_time_;
+  double elapsed_ = 0.0;
+
+  // Metrics (each written by one thread, read after the join or as a display value).
+  std::atomic<long> haptic_count_{0}, physics_count_{0};
+  std::vector<double> periods_;
+  int since_miss_ = 1 << 30;  ///< haptic samples since a loop missed its deadline
+  long unchecked_samples_ = 0;
+  double max_jump_any_ = 0.0;
+  double max_jump_ = 0.0, max_jump_ratio_ = 0.0, max_coupling_force_ = 0.0, step_seconds_ = 0.0,
+         step_max_ = 0.0;
+  std::atomic<double> max_depth_{0.0}, generated_{0.0}, last_force_{0.0};
+  // Overlay rates (graphics thread).
+  long frames_ = 0, rate_haptic_ = 0, rate_physics_ = 0, rate_frames_ = 0;
+  double haptic_rate_ = 0.0, physics_rate_ = 0.0, frame_rate_ = 0.0;
+  Clock::time_point rate_time_ = Clock::now();
+};
+
+bool parse(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= argc) return false;
+      out = argv[++i];
+      return true;
+    };
+    std::string v;
+    if (a == "--headless") {
+      o.headless = true;
+    } else if (a == "--scene" && value(v) && (v == "peg" || v == "cavity")) {
+      o.scene = v;
+    } else if (a == "--device" && value(v)) {
+      o.device = v;
+    } else if (a == "--seconds" && value(v)) {
+      o.seconds = std::atof(v.c_str());
+    } else if (a == "--physics-hz" && value(v)) {
+      o.physics_hz = std::atof(v.c_str());
+    } else if (a == "--png" && value(v)) {
+      o.png = v;
+    } else if (a == "--json" && value(v)) {
+      o.json = v;
+    } else if (a == "--wrench-log" && value(v)) {
+      o.wrench_log = v;
+    } else {
+      std::fprintf(stderr,
+                   "usage: %s [--scene peg|cavity] [--device mouse|spacemouse|script:FILE]\n"
+                   "          [--physics-hz HZ] [--headless [--seconds S] [--png F] [--json F] "
+                   "[--wrench-log F]]\n",
+                   argv[0]);
+      return false;
+    }
+  }
+  if (o.physics_hz == 0.0) o.physics_hz = o.scene == "cavity" ? 500.0 : 1000.0;
+  return o.seconds >= 0.0 && std::isfinite(o.seconds) && o.physics_hz >= 100.0 &&
+         o.physics_hz <= 10000.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (!parse(argc, argv, options)) return 2;
+  if (options.headless && options.device.rfind("script:", 0) != 0) {
+    std::fprintf(stderr, "--headless needs --device script:FILE\n");
+    return 2;
+  }
+  std::string error;
+  std::unique_ptr<sc::demo::Device> device = sc::demo::makeDevice(options.device, error);
+  if (!device) {
+    std::fprintf(stderr, "device: %s\n", error.c_str());
+    return 2;
+  }
+  Demo demo(options, std::move(device));
+  sc::demo::ViewerCallbacks cb;
+  cb.collect = [&](std::vector<sc::demo::DrawItem>& items) { demo.collect(items); };
+  cb.overlay = [&] { return demo.overlay(); };
+  if (options.headless) {
+    const double seconds = options.seconds > 0 ? options.seconds : demo.defaultSeconds();
+    demo.start();
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    demo.stop();
+    const std::string metrics = demo.json();
+    std::fputs(metrics.c_str(), stdout);
+    if (!options.json.empty()) {
+      FILE* f = std::fopen(options.json.c_str(), "w");
+      if (f == nullptr) return 1;
+      std::fputs(metrics.c_str(), f);
+      std::fclose(f);
+    }
+    const sc::demo::WrenchLog* log = sc::demo::wrenchLogOf(demo.device());
+    if (!options.wrench_log.empty() && log != nullptr) {
+      FILE* f = std::fopen(options.wrench_log.c_str(), "w");
+      if (f == nullptr) return 1;
+      std::fprintf(f, "# t fx fy fz tx ty tz (reaction rendered to the device)\n");
+      for (std::size_t i = 0; i < log->t.size(); ++i) {
+        const sc::demo::Wrench& w = log->wrench[i];
+        std::fprintf(f, "%.6f %.6g %.6g %.6g %.6g %.6g %.6g\n", log->t[i], w.force[0], w.force[1],
+                     w.force[2], w.torque[0], w.torque[1], w.torque[2]);
+      }
+      std::fclose(f);
+    }
+    if (!options.png.empty() &&
+        !sc::demo::renderToPng(argc, argv, cb, demo.targetY(), demo.distance(), options.png))
+      return 1;
+    return 0;
+  }
+  bool attached = false;
+  cb.step = [&] {
+    if (!attached) {  // the window exists now: window-fed devices take their events
+      demo.device().attachWindow();
+      attached = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));  // about 60-100 frames per second
+  };
+  cb.key = [&](unsigned char k) { demo.device().key(k); };
+  demo.start();
+  sc::demo::runViewer(argc, argv, "SmartCollision haptic coupling", cb, demo.targetY(),
+                      demo.distance());
+  return 0;
+}

@@ -26,6 +26,7 @@
 
 #include "../common/device.h"
 #include "../common/off_mesh.h"
+#include "../common/cli.h"
 #include "../common/viewer.h"
 #include "smartcollision/bullet/bullet.h"
 
@@ -100,13 +101,11 @@ sc::bullet::BodyState stateOf(const StateWords& w) {
   return s;
 }
 
-struct Options {
+/// seconds 0: the script's length + 1 s (headless), unlimited otherwise.
+struct Options : sc::demo::HeadlessOptions {
   std::string scene = "peg";
   std::string device = "mouse";
-  bool headless = false;
-  double seconds = 0.0;     ///< 0: the script's length + 1 s (headless), unlimited otherwise
   double physics_hz = 0.0;  ///< 0: 1000 Hz for peg, 500 Hz for cavity (75k triangles)
-  std::string png, json;
   std::string wrench_log;  ///< script device: the rendered wrenches, one line per sample
 };
 
@@ -671,27 +670,16 @@ class Demo {
 
 bool parse(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
+    if (sc::demo::readHeadlessOption(argc, argv, i, o)) continue;
     const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc) return false;
-      out = argv[++i];
-      return true;
-    };
     std::string v;
-    if (a == "--headless") {
-      o.headless = true;
-    } else if (a == "--scene" && value(v) && (v == "peg" || v == "cavity")) {
+    auto value = [&](std::string& out) { return sc::demo::nextValue(argc, argv, i, out); };
+    if (a == "--scene" && value(v) && (v == "peg" || v == "cavity")) {
       o.scene = v;
     } else if (a == "--device" && value(v)) {
       o.device = v;
-    } else if (a == "--seconds" && value(v)) {
-      o.seconds = std::atof(v.c_str());
     } else if (a == "--physics-hz" && value(v)) {
       o.physics_hz = std::atof(v.c_str());
-    } else if (a == "--png" && value(v)) {
-      o.png = v;
-    } else if (a == "--json" && value(v)) {
-      o.json = v;
     } else if (a == "--wrench-log" && value(v)) {
       o.wrench_log = v;
     } else {
@@ -733,13 +721,7 @@ int main(int argc, char** argv) {
     std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
     demo.stop();
     const std::string metrics = demo.json();
-    std::fputs(metrics.c_str(), stdout);
-    if (!options.json.empty()) {
-      FILE* f = std::fopen(options.json.c_str(), "w");
-      if (f == nullptr) return 1;
-      std::fputs(metrics.c_str(), f);
-      std::fclose(f);
-    }
+    if (!sc::demo::emitMetrics(metrics, options.json)) return 1;
     const sc::demo::WrenchLog* log = sc::demo::wrenchLogOf(demo.device());
     if (!options.wrench_log.empty() && log != nullptr) {
       FILE* f = std::fopen(options.wrench_log.c_str(), "w");

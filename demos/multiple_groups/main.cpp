@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "../common/cli.h"
 #include "../common/viewer.h"
 #include "sc.h"
 
@@ -34,10 +35,8 @@ namespace {
 constexpr double kWarnDistance = 0.3;
 constexpr double kFrameDt = 1.0 / 60.0;
 
-struct Options {
-  bool headless = false;
-  double seconds = 6.0;
-  std::string png, json;
+struct Options : sc::demo::HeadlessOptions {
+  Options() { seconds = 6.0; }
 };
 
 enum class Status { Grey, Green, Yellow, Red };
@@ -280,22 +279,7 @@ class Demo {
 
 bool parse(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc) return false;
-      out = argv[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "--headless") {
-      o.headless = true;
-    } else if (a == "--seconds" && value(v)) {
-      o.seconds = std::atof(v.c_str());
-    } else if (a == "--png" && value(v)) {
-      o.png = v;
-    } else if (a == "--json" && value(v)) {
-      o.json = v;
-    } else {
+    if (!sc::demo::readHeadlessOption(argc, argv, i, o)) {
       std::fprintf(stderr, "usage: %s [--headless [--seconds S] [--png F] [--json F]]\n", argv[0]);
       return false;
     }
@@ -316,13 +300,7 @@ int main(int argc, char** argv) {
     const long frames = std::lround(options.seconds / kFrameDt);
     for (long i = 0; i < frames; ++i) demo.step();
     const std::string metrics = demo.json();
-    std::fputs(metrics.c_str(), stdout);
-    if (!options.json.empty()) {
-      FILE* f = std::fopen(options.json.c_str(), "w");
-      if (f == nullptr) return 1;
-      std::fputs(metrics.c_str(), f);
-      std::fclose(f);
-    }
+    if (!sc::demo::emitMetrics(metrics, options.json)) return 1;
     if (!options.png.empty() && !sc::demo::renderToPng(argc, argv, cb, 0.3f, 7.0f, options.png))
       return 1;
     return 0;

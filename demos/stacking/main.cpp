@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../common/off_mesh.h"
+#include "../common/cli.h"
 #include "../common/viewer.h"
 #include "smartcollision/bullet/bullet.h"
 
@@ -26,14 +27,12 @@ using sc::bullet::ContactModel;
 
 constexpr double kHz = 240.0;
 
-struct Options {
+struct Options : sc::demo::HeadlessOptions {
+  Options() { seconds = 10.0; }
   std::string scene = "tower";
   ContactModel model = ContactModel::Potential;
   sc::RotationMode rotation = sc::bullet::defaultQuerySettings().rotation_mode;
-  bool headless = false;
-  double seconds = 10.0;
   long steps = 0;  ///< when > 0, overrides seconds (soak runs: bench/soak.sh)
-  std::string png, json;
   std::vector<std::string> meshes;
 };
 
@@ -361,29 +360,18 @@ class Demo {
 
 bool parse(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
+    if (sc::demo::readHeadlessOption(argc, argv, i, o)) continue;
     const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc) return false;
-      out = argv[++i];
-      return true;
-    };
     std::string v;
-    if (a == "--headless") {
-      o.headless = true;
-    } else if (a == "--scene" && value(v)) {
+    auto value = [&](std::string& out) { return sc::demo::nextValue(argc, argv, i, out); };
+    if (a == "--scene" && value(v)) {
       o.scene = v;
     } else if (a == "--model" && value(v)) {
       o.model = v == "manifold" ? ContactModel::Manifold : ContactModel::Potential;
     } else if (a == "--rotation" && value(v)) {
       o.rotation = v == "mix" ? sc::RotationMode::Mix : v == "free" ? sc::RotationMode::Free : sc::RotationMode::Input;
-    } else if (a == "--seconds" && value(v)) {
-      o.seconds = std::atof(v.c_str());
     } else if (a == "--steps" && value(v)) {
       o.steps = std::atol(v.c_str());
-    } else if (a == "--png" && value(v)) {
-      o.png = v;
-    } else if (a == "--json" && value(v)) {
-      o.json = v;
     } else if (a == "--mesh" && value(v)) {
       o.meshes.push_back(v);
       o.scene = "meshes";
@@ -413,13 +401,7 @@ int main(int argc, char** argv) {
     const long steps = options.steps > 0 ? options.steps : std::lround(options.seconds * kHz);
     for (long i = 0; i < steps; ++i) demo.step();
     const std::string metrics = demo.json();
-    std::fputs(metrics.c_str(), stdout);
-    if (!options.json.empty()) {
-      FILE* f = std::fopen(options.json.c_str(), "w");
-      if (f == nullptr) return 1;
-      std::fputs(metrics.c_str(), f);
-      std::fclose(f);
-    }
+    if (!sc::demo::emitMetrics(metrics, options.json)) return 1;
     if (!options.png.empty() &&
         !sc::demo::renderToPng(argc, argv, cb, demo.targetY(), demo.distance(), options.png))
       return 1;

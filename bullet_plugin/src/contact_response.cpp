@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "smartcollision/bullet/plugin.h"
+
 namespace sc::bullet::detail {
 
 namespace {
@@ -40,6 +42,48 @@ SpringParts springImpulse(double m, double m_damp, double k, double c, double de
 }
 
 }  // namespace
+
+BodySide bodySide(const btCollisionObjectWrapper* w) {
+  BodySide s;
+  s.object = w->getCollisionObject();
+  btRigidBody* rb = const_cast<btRigidBody*>(btRigidBody::upcast(s.object));
+  const bool dynamic = rb != nullptr && !s.object->isStaticOrKinematicObject() && rb->getInvMass() > 0;
+  s.body = dynamic ? rb : nullptr;
+  s.inv_mass = dynamic ? double(rb->getInvMass()) : 0.0;
+  s.center = w->getWorldTransform().getOrigin();
+  return s;
+}
+
+void deliver(Plugin& plugin, const BodySide& t, const BodySide& o, const Impulse& imp) {
+  btRigidBody* body = t.body;
+  if (body == nullptr || (imp.linear.isZero() && imp.velocity.isZero() && imp.angular.isZero()))
+    return;
+  if (!body->isActive()) {
+    // A sleeping body wakes when an active body presses on it.
+    if (o.body == nullptr || !o.body->isActive()) return;
+    body->activate();
+  }
+  // Impulses act at the placement centre (the body's centre of mass unless the shape
+  // is a compound's child).
+  const btVector3 lever = t.center - body->getCenterOfMassPosition();
+  if (plugin.worldAttached()) {
+    plugin.addImpulse(body, lever, imp.linear, imp.velocity, imp.angular);
+  } else {
+    body->applyCentralImpulse(imp.linear + imp.velocity);
+    body->applyTorqueImpulse(imp.angular + lever.cross(imp.linear + imp.velocity));
+  }
+}
+
+void addTargetPoint(const Vec3& n, const Vec3& p_t, double depth, int dir,
+                    btManifoldResult* result) {
+  // In doubles, converted once: btVector3 arithmetic can be vectorized over its unset
+  // fourth lane, which traps when floating-point exceptions are enabled.
+  if (dir == 0) {
+    result->addContactPoint(toBt(n), toBt(p_t - depth * n), btScalar(depth));
+  } else {
+    result->addContactPoint(toBt(-n), toBt(p_t), btScalar(depth));
+  }
+}
 
 btVector3 BodySide::velocityAt(const btVector3& p) const {
   const auto* rb = btRigidBody::upcast(object);

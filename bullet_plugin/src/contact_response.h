@@ -8,6 +8,10 @@
 #include "smartcollision/bullet/settings.h"
 #include "smartcollision/collision.h"
 
+namespace sc::bullet {
+class Plugin;
+}
+
 namespace sc::bullet::detail {
 
 /// A side of a pair as the response sees it. `body` is null for a static or
@@ -23,6 +27,10 @@ struct BodySide {
   /// 1 / (e . I^-1 e), or 0 for an infinite moment.
   double inverseMomentAbout(const btVector3& e) const;
 };
+
+/// The side of a Bullet object: its rigid body when dynamic, the world origin of its
+/// shape as the centre.
+BodySide bodySide(const btCollisionObjectWrapper* w);
 
 /// Linear parts act at the target's placement centre. The velocity part (damping,
 /// friction, impact, recovery) is shared among the body's contacts of the substep
@@ -52,5 +60,15 @@ Impulse recoveryImpulse(const BodySide& t, const BodySide& o, const btVector3& u
 Impulse recoveryImpulse(const BodySide& t, const BodySide& o, const btVector3& t_min,
                         const btVector3& t_max, const btVector3& o_min, const btVector3& o_max,
                         double speed, double period);
+
+/// Bullet's contact point for a point `p_t` of a target with signed distance `depth`
+/// along `n` (from the opponent towards the target); `dir` is the btManifoldResult's
+/// body (0 or 1) that is the target.
+void addTargetPoint(const Vec3& n, const Vec3& p_t, double depth, int dir,
+                    btManifoldResult* result);
+
+/// Buffers in the plugin (or, without an ScDynamicsWorld, applies) the impulse of
+/// target `t` at its centre; wakes a sleeping `t` pressed by an active `o`.
+void deliver(Plugin& plugin, const BodySide& t, const BodySide& o, const Impulse& imp);
 
 }  // namespace sc::bullet::detail

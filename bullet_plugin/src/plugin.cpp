@@ -12,10 +12,15 @@
 
 #include "smartcollision/bullet/sc_bullet_shape.h"
 #include "smartcollision/bullet/sc_collision_algorithm.h"
+#include "smartcollision/bullet/sc_plane_algorithm.h"
 
 namespace sc::bullet {
 
 namespace {
+
+/// Both algorithms come from the dispatcher's pool.
+constexpr int kAlgorithmSize =
+    static_cast<int>(std::max(sizeof(ScCollisionAlgorithm), sizeof(ScPlaneAlgorithm)));
 
 bool finiteAtLeast(double v, double lo) { return std::isfinite(v) && v >= lo; }
 
@@ -86,6 +91,62 @@ ModelPtr hullModel(const btConvexHullShape& hull) {
   return convexModel(std::move(m));
 }
 
+/// The core of a rounded primitive: a point (sphere) or the axis segment (capsule) as
+/// a one-triangle soup whose corners repeat, so its support is exactly the point or
+/// the segment; the radius is added to the results (no tessellated surface).
+ModelPtr coreModel(const Vec3& a, const Vec3& b) {
+  MeshData m;
+  m.vertices = {a, b};
+  m.triangles = {Tri(0, 1, 1)};
+  Result<PiecePtr> piece = buildPiece(ModelKind::TriangleSoup, std::move(m));
+  if (!piece.hasValue()) return nullptr;
+  return std::make_shared<const Model>(ModelKind::TriangleSoup, std::vector<PiecePtr>{piece.value()});
+}
+
+ModelPtr capsuleModel(const btCapsuleShape& capsule) {
+  Vec3 half = Vec3::Zero();
+  half[capsule.getUpAxis()] = double(capsule.getHalfHeight());
+  return coreModel(-half, half);
+}
+
+/// What identifies a primitive's model: a shape changed in place (or a new shape at a
+/// freed address) gets a new one. Zero for shapes without a model.
+btVector3 primitiveSignature(const btCollisionShape* shape) {
+  switch (shape->getShapeType()) {
+    case BOX_SHAPE_PROXYTYPE:
+      return static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin();
+    case CONVEX_HULL_SHAPE_PROXYTYPE: {
+      const auto* hull = static_cast<const btConvexHullShape*>(shape);
+      btVector3 sum(0, 0, 0);
+      for (int i = 0; i < hull->getNumPoints(); ++i) sum += hull->getScaledPoint(i);
+      return btVector3(btScalar(hull->getNumPoints()), sum.x() + sum.y() + sum.z(), sum.length());
+    }
+    case SPHERE_SHAPE_PROXYTYPE:
+      return btVector3(1, 0, 0);  // the point does not depend on the radius
+    case CAPSULE_SHAPE_PROXYTYPE: {
+      const auto* capsule = static_cast<const btCapsuleShape*>(shape);
+      return btVector3(2, capsule->getHalfHeight(), btScalar(capsule->getUpAxis()));
+    }
+    default:
+      return btVector3(0, 0, 0);
+  }
+}
+
+ModelPtr buildPrimitiveModel(const btCollisionShape* shape, const btVector3& signature) {
+  switch (shape->getShapeType()) {
+    case BOX_SHAPE_PROXYTYPE:
+      return boxModel(signature);
+    case CONVEX_HULL_SHAPE_PROXYTYPE:
+      return hullModel(*static_cast<const btConvexHullShape*>(shape));
+    case SPHERE_SHAPE_PROXYTYPE:
+      return coreModel(Vec3::Zero(), Vec3::Zero());
+    case CAPSULE_SHAPE_PROXYTYPE:
+      return capsuleModel(*static_cast<const btCapsuleShape*>(shape));
+    default:
+      return nullptr;
+  }
+}
+
 }  // namespace
 
 SceneSettings defaultQuerySettings() {
@@ -113,20 +174,23 @@ Status validate(const PluginSettings& s) {
 }
 
 struct Plugin::CreateFuncs {
+  template <class Algorithm>
   struct Func : btCollisionAlgorithmCreateFunc {
     Func(Plugin* p, bool closest) : plugin(p), closest_points(closest) {}
     btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
                                                    const btCollisionObjectWrapper* body0,
                                                    const btCollisionObjectWrapper* body1) override {
-      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(ScCollisionAlgorithm));
-      return new (mem) ScCollisionAlgorithm(ci, body0, body1, plugin, closest_points);
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(Algorithm));
+      return new (mem) Algorithm(ci, body0, body1, plugin, closest_points);
     }
     Plugin* plugin;
     bool closest_points;
   };
-  explicit CreateFuncs(Plugin* p) : contact(p, false), closest(p, true) {}
-  Func contact;
-  Func closest;
+  explicit CreateFuncs(Plugin* p) : contact(p, false), closest(p, true), plane(p, false), plane_closest(p, true) {}
+  Func<ScCollisionAlgorithm> contact;
+  Func<ScCollisionAlgorithm> closest;
+  Func<ScPlaneAlgorithm> plane;
+  Func<ScPlaneAlgorithm> plane_closest;
 };
 
 Plugin::Plugin(const PluginSettings& settings)
@@ -165,23 +229,11 @@ ContactSettings Plugin::pairSettings(const btCollisionObject* a, const btCollisi
 }
 
 ModelPtr Plugin::primitiveModel(const btCollisionShape* shape) {
-  btVector3 signature(0, 0, 0);
-  if (shape->getShapeType() == BOX_SHAPE_PROXYTYPE) {
-    signature = static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin();
-  } else if (shape->getShapeType() == CONVEX_HULL_SHAPE_PROXYTYPE) {
-    const auto* hull = static_cast<const btConvexHullShape*>(shape);
-    btVector3 sum(0, 0, 0);
-    for (int i = 0; i < hull->getNumPoints(); ++i) sum += hull->getScaledPoint(i);
-    signature = btVector3(btScalar(hull->getNumPoints()), sum.x() + sum.y() + sum.z(), sum.length());
-  } else {
-    return nullptr;
-  }
-  // The signature catches a shape changed in place or a new shape at a freed address.
+  const btVector3 signature = primitiveSignature(shape);
+  if (signature.isZero()) return nullptr;
   auto it = models_.find(shape);
   if (it != models_.end() && it->second.signature == signature) return it->second.model;
-  ModelPtr model = shape->getShapeType() == BOX_SHAPE_PROXYTYPE
-                       ? boxModel(signature)
-                       : hullModel(*static_cast<const btConvexHullShape*>(shape));
+  ModelPtr model = buildPrimitiveModel(shape, signature);
   models_[shape] = CachedModel{model, signature};
   return model;
 }
@@ -213,9 +265,14 @@ btCollisionAlgorithmCreateFunc* Plugin::closestPointsCreateFunc() const {
   return &create_funcs_->closest;
 }
 
+btCollisionAlgorithmCreateFunc* Plugin::planeCreateFunc(bool closest_points) const {
+  return closest_points ? static_cast<btCollisionAlgorithmCreateFunc*>(&create_funcs_->plane_closest)
+                        : &create_funcs_->plane;
+}
+
 btDefaultCollisionConstructionInfo collisionConstructionInfo() {
   btDefaultCollisionConstructionInfo info;
-  info.m_customCollisionAlgorithmMaxElementSize = static_cast<int>(sizeof(ScCollisionAlgorithm));
+  info.m_customCollisionAlgorithmMaxElementSize = kAlgorithmSize;
   return info;
 }
 
@@ -226,19 +283,22 @@ Result<std::shared_ptr<Plugin>> registerSmartCollision(btCollisionDispatcher* di
   if (!s.ok()) return s;
   btCollisionConfiguration* config = dispatcher->getCollisionConfiguration();
   if (config == nullptr || config->getCollisionAlgorithmPool() == nullptr ||
-      config->getCollisionAlgorithmPool()->getElementSize() <
-          static_cast<int>(sizeof(ScCollisionAlgorithm)))
+      config->getCollisionAlgorithmPool()->getElementSize() < kAlgorithmSize)
     return Status(ErrorCode::InvalidOperation,
                   "the dispatcher's algorithm pool is too small: build the collision "
                   "configuration from sc::bullet::collisionConstructionInfo()");
   auto plugin = std::make_shared<Plugin>(settings);
-  const int others[] = {kShapeType, BOX_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE};
+  const int others[] = {kShapeType,          BOX_SHAPE_PROXYTYPE,    CONVEX_HULL_SHAPE_PROXYTYPE,
+                        SPHERE_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE};
   for (int other : others) {
+    const bool plane = other == STATIC_PLANE_PROXYTYPE;
     for (int order = 0; order < 2; ++order) {
       const int t0 = order == 0 ? kShapeType : other;
       const int t1 = order == 0 ? other : kShapeType;
-      dispatcher->registerCollisionCreateFunc(t0, t1, plugin->contactCreateFunc());
-      dispatcher->registerClosestPointsCreateFunc(t0, t1, plugin->closestPointsCreateFunc());
+      dispatcher->registerCollisionCreateFunc(
+          t0, t1, plane ? plugin->planeCreateFunc(false) : plugin->contactCreateFunc());
+      dispatcher->registerClosestPointsCreateFunc(
+          t0, t1, plane ? plugin->planeCreateFunc(true) : plugin->closestPointsCreateFunc());
     }
   }
   return plugin;

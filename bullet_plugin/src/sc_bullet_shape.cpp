@@ -3,6 +3,8 @@
 // walk that Bullet's ray tests, debug drawer and convex-concave pairs use.
 #include "smartcollision/bullet/sc_bullet_shape.h"
 
+#include <LinearMath/btConvexHullComputer.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -59,6 +61,21 @@ Result<std::shared_ptr<ScBulletShape>> ScBulletShape::create(ModelKind kind, con
   shape->local_max_ = toBt(b.max);
   shape->box_half_ = 0.5 * (shape->local_max_ - shape->local_min_);
   return shape;
+}
+
+const std::vector<btVector3>& ScBulletShape::hullVertices() const {
+  std::call_once(hull_once_, [this] {
+    btConvexHullComputer computer;
+    const int n = static_cast<int>(vertices_.size());
+    if (n > 0 && computer.compute(vertices_[0].m_floats, static_cast<int>(sizeof(btVector3)), n,
+                                  0, 0) >= 0 &&
+        computer.vertices.size() > 0) {
+      for (int i = 0; i < computer.vertices.size(); ++i) hull_vertices_.push_back(computer.vertices[i]);
+    } else {
+      hull_vertices_ = vertices_;  // flat or degenerate input: every vertex is a candidate
+    }
+  });
+  return hull_vertices_;
 }
 
 void ScBulletShape::setAabbMargin(double margin) {

@@ -35,17 +35,27 @@ struct Side {
   GroupView view;
   btVector3 aabb_min, aabb_max;
   bool dynamic = false;
+  double radius = 0.0;  ///< rounded primitives: the model is the core, this the radius
 };
 
+/// Radius of a rounded primitive (a sphere is a point, a capsule a segment, plus
+/// this radius); 0 for every other shape. Read each step, like Bullet does.
+double roundingRadius(const btCollisionShape* shape) {
+  switch (shape->getShapeType()) {
+    case SPHERE_SHAPE_PROXYTYPE:
+      return double(static_cast<const btSphereShape*>(shape)->getRadius());
+    case CAPSULE_SHAPE_PROXYTYPE:
+      return double(static_cast<const btCapsuleShape*>(shape)->getRadius());
+    default:
+      return 0.0;
+  }
+}
+
 void makeSide(const btCollisionObjectWrapper* w, const Model* model, Side& s) {
-  const btCollisionObject* obj = w->getCollisionObject();
   const btTransform& t = w->getWorldTransform();
-  s.body.object = obj;
-  btRigidBody* rb = const_cast<btRigidBody*>(btRigidBody::upcast(obj));
-  s.dynamic = rb != nullptr && !obj->isStaticOrKinematicObject() && rb->getInvMass() > 0;
-  s.body.body = s.dynamic ? rb : nullptr;
-  s.body.inv_mass = s.dynamic ? double(rb->getInvMass()) : 0.0;
-  s.body.center = t.getOrigin();
+  s.body = detail::bodySide(w);
+  s.dynamic = s.body.body != nullptr;
+  s.radius = roundingRadius(w->getCollisionShape());
   s.part.model = model;
   s.part.id = 0;
   s.view.parts = &s.part;
@@ -61,9 +71,30 @@ void makeSide(const btCollisionObjectWrapper* w, const Model* model, Side& s) {
   const btVector3 half = 0.5 * (hi - lo);
   const btVector3 center = t(0.5 * (hi + lo));
   const btMatrix3x3 abs_basis = t.getBasis().absolute();
-  const btVector3 extent(abs_basis[0].dot(half), abs_basis[1].dot(half), abs_basis[2].dot(half));
+  const btVector3 extent = btVector3(abs_basis[0].dot(half), abs_basis[1].dot(half),
+                                     abs_basis[2].dot(half)) +
+                           btVector3(1, 1, 1) * btScalar(s.radius);
   s.aabb_min = center - extent;
   s.aabb_max = center + extent;
+}
+
+/// A direction's result for the rounded shapes: the core measured the core point or
+/// segment (target radius rt, opponent ro); the surfaces are R = rt + ro closer along
+/// the normal. Apart within R becomes a depth R - d along the normal; a depth of the
+/// cores grows by R, its contact centre moves out by R.
+void inflate(DirectedResult& r, double rt, double ro) {
+  const double rr = rt + ro;
+  if (r.code != ErrorCode::Ok || rr <= 0.0) return;
+  r.point_on_target -= rt * r.normal;
+  r.point_on_opponent += ro * r.normal;
+  if (r.distance > rr) {
+    r.distance -= rr;
+    return;
+  }
+  const Vec3 current = r.contact_position + r.tpdv;
+  r.tpdv = r.distance > 0.0 ? Vec3((r.distance - rr) * r.normal) : Vec3(r.tpdv - rr * r.normal);
+  r.distance = -r.tpdv.norm();
+  r.contact_position = current - r.tpdv;
 }
 
 /// Scalar moment of a side's body (trace / 3 of the world inertia), 0 when static.
@@ -84,46 +115,41 @@ double reduced(double a, double b) {
 /// the point on body 1 and the normal from body 1 towards body 0, as
 /// btManifoldResult expects.
 void addPoint(const DirectedResult& r, int dir, double depth, btManifoldResult* result) {
-  const btVector3 n = toBt(r.normal);
-  const btVector3 p_o = toBt(r.point_on_opponent);
-  if (dir == 0) {
-    result->addContactPoint(n, p_o, btScalar(depth));
-  } else {
-    result->addContactPoint(-n, p_o + n * btScalar(depth), btScalar(depth));
-  }
-}
-
-/// Bullet's contact point for a point `p_t` of the target with signed distance
-/// `depth` along `n` (from O towards T); `dir` = the result's body that is T.
-void addTargetPoint(const btVector3& n, const btVector3& p_t, double depth, int dir,
-                    btManifoldResult* result) {
-  if (dir == 0) {
-    result->addContactPoint(n, p_t - n * btScalar(depth), btScalar(depth));
-  } else {
-    result->addContactPoint(-n, p_t, btScalar(depth));
-  }
+  detail::addTargetPoint(r.normal, r.point_on_opponent + depth * r.normal, depth, dir, result);
 }
 
 /// The target's contact face (or edge) corners as extra manifold points: one closest
-/// pair per direction would leave a resting box on one corner. Their depth is taken
-/// against the opponent's contact plane (through its contact point, normal n); a
-/// corner over a gap of the opponent is counted as supported (an approximation).
-void addFeaturePoints(const DirectedResult& r, const GroupView& target, int dir, double threshold,
+/// pair per direction would leave a resting box on one corner. A convex piece gives
+/// every vertex within the threshold (its whole contact face, not just the reported
+/// triangle, so a box rests on four corners); a non-convex one its contact triangle's
+/// or edge's corners. Their depth is taken against the opponent's contact plane
+/// (through its contact point, normal n), which is the opponent's surface only when
+/// its contact feature is a face: otherwise (a tilted box's corner on a face below)
+/// the corners of the face would all read touching and hold the tilt, so only the
+/// direction whose opponent shows a face adds corners. A corner beyond the edge of
+/// that face is counted as supported (an approximation).
+void addFeaturePoints(const DirectedResult& r, const Side& target, int dir, double threshold,
                       btManifoldResult* result) {
+  if (r.opponent_feature.type != FeatureType::Face) return;
   const Feature& f = r.target_feature;
-  if (f.type == FeatureType::Vertex || r.target_piece < 0) return;
-  const Model* model = target.parts[0].model;
-  if (r.target_piece >= static_cast<int>(model->pieces().size())) return;
-  const MeshData& mesh = model->pieces()[static_cast<std::size_t>(r.target_piece)]->mesh();
-  const Rigid world_from_t = target.placement.worldFromLocal();
-  const btVector3 n = toBt(r.normal);
-  for (int k = 0; k < f.count(); ++k) {
-    const int vi = f.vertices[k];
-    if (vi < 0 || vi >= static_cast<int>(mesh.vertices.size())) continue;
-    const Vec3 p = world_from_t * mesh.vertices[static_cast<std::size_t>(vi)];
+  const Model* model = target.part.model;
+  if (r.target_piece < 0 || r.target_piece >= static_cast<int>(model->pieces().size())) return;
+  const Piece& piece = *model->pieces()[static_cast<std::size_t>(r.target_piece)];
+  const MeshData& mesh = piece.mesh();
+  const Rigid world_from_t = target.view.placement.worldFromLocal();
+  auto add = [&](int vi) {
+    // On the surface of a rounded target: its core corner, radius towards O.
+    const Vec3 p = world_from_t * mesh.vertices[static_cast<std::size_t>(vi)] - target.radius * r.normal;
     const double depth = r.normal.dot(p - r.point_on_opponent);
-    if (depth < threshold) addTargetPoint(n, toBt(p), depth, dir, result);
+    if (depth < threshold) detail::addTargetPoint(r.normal, p, depth, dir, result);
+  };
+  if (piece.stats().convex) {
+    for (int vi = 0; vi < static_cast<int>(mesh.vertices.size()); ++vi) add(vi);
+    return;
   }
+  if (f.type == FeatureType::Vertex) return;
+  for (int k = 0; k < f.count(); ++k)
+    if (f.vertices[k] >= 0 && f.vertices[k] < static_cast<int>(mesh.vertices.size())) add(f.vertices[k]);
 }
 
 /// Smallest-overlap axis of two AABBs as a manifold point (first-seen intersections).
@@ -181,27 +207,6 @@ void reportClosestPoints(const DirectedResult out[2], const Side sides[2], bool 
     addOverlapPoint(sides[swapped ? 1 : 0], sides[swapped ? 0 : 1], result);
 }
 
-/// Buffers (or, without an ScDynamicsWorld, applies) the impulse of target t.
-void deliver(Plugin& plugin, const Side& t, const Side& o, const detail::Impulse& imp) {
-  btRigidBody* body = t.body.body;
-  if (body == nullptr || (imp.linear.isZero() && imp.velocity.isZero() && imp.angular.isZero()))
-    return;
-  if (!body->isActive()) {
-    // A sleeping body wakes when an active body presses on it.
-    if (o.body.body == nullptr || !o.body.body->isActive()) return;
-    body->activate();
-  }
-  // Impulses act at the placement centre (the body's centre of mass unless the shape
-  // is a compound's child).
-  const btVector3 lever = t.body.center - body->getCenterOfMassPosition();
-  if (plugin.worldAttached()) {
-    plugin.addImpulse(body, lever, imp.linear, imp.velocity, imp.angular);
-  } else {
-    body->applyCentralImpulse(imp.linear + imp.velocity);
-    body->applyTorqueImpulse(imp.angular + lever.cross(imp.linear + imp.velocity));
-  }
-}
-
 }  // namespace
 
 ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
@@ -244,6 +249,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   dirs.b_target = sides[1].dynamic || closest_points_;
   DirectedResult out[2];
   tracker_.update(sides[0].view, sides[1].view, dirs, query, out);
+  for (int dir = 0; dir < 2; ++dir) inflate(out[dir], sides[dir].radius, sides[1 - dir].radius);
 
   if (closest_points_) {
     result->setPersistentManifold(manifold_);
@@ -289,7 +295,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
       const double threshold = potential ? 0.0 : double(manifold_->getContactBreakingThreshold());
       if (!potential && r.distance < threshold) {
         addPoint(r, swapped ? 1 - dir : dir, r.distance, result);
-        addFeaturePoints(r, t.view, swapped ? 1 - dir : dir, threshold, result);
+        addFeaturePoints(r, t, swapped ? 1 - dir : dir, threshold, result);
         any_point = true;
       } else if (potential && r.penetrating()) {
         imp = (seen_apart_[dir] ? detail::potentialImpulse(r, t.body, o.body, contact, dt, friction,
@@ -298,7 +304,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
                                                             r.tpdv.norm(), ps.recovery_speed, period));
       }
     }
-    deliver(*plugin_, t, o, imp);
+    detail::deliver(*plugin_, t.body, o.body, imp);
   }
   if (!potential) {
     if (any_point)

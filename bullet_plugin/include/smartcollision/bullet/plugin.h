@@ -44,9 +44,11 @@ class Plugin {
   /// The settings of the pair (a, b) after the overrides.
   ContactSettings pairSettings(const btCollisionObject* a, const btCollisionObject* b) const;
 
-  /// SmartCollision model of a btBoxShape or btConvexHullShape (a convex polytope:
-  /// its corners / points, hulled, not tessellated), built once per shape and cached.
-  /// Null for any other shape.
+  /// SmartCollision model of a Bullet primitive, built once per shape and cached:
+  /// btBoxShape and btConvexHullShape as a convex polytope (corners / points, hulled);
+  /// btSphereShape and btCapsuleShape as their core, a point or the axis segment, whose
+  /// results the algorithm widens by the radius (nothing is tessellated). Null for any
+  /// other shape.
   ModelPtr primitiveModel(const btCollisionShape* shape);
 
   // Impulse buffer: filled during collision detection, applied after it.
@@ -69,6 +71,8 @@ class Plugin {
   /// Create functions owned here; the dispatcher keeps raw pointers to them.
   btCollisionAlgorithmCreateFunc* contactCreateFunc() const;
   btCollisionAlgorithmCreateFunc* closestPointsCreateFunc() const;
+  /// ScBulletShape against btStaticPlaneShape (ScPlaneAlgorithm).
+  btCollisionAlgorithmCreateFunc* planeCreateFunc(bool closest_points) const;
 
  private:
   struct Impulse {
@@ -80,7 +84,7 @@ class Plugin {
   };
   struct CachedModel {
     ModelPtr model;
-    btVector3 signature;  ///< half extents, or (point count, coordinate sum, |sum|)
+    btVector3 signature;  ///< what the model depends on (see primitiveSignature)
   };
   struct CreateFuncs;
 
@@ -99,10 +103,10 @@ class Plugin {
 /// btDefaultCollisionConfiguration.
 btDefaultCollisionConstructionInfo collisionConstructionInfo();
 
-/// Registers the SmartCollision algorithm for ScBulletShape against ScBulletShape,
-/// btBoxShape and btConvexHullShape, both orders, in the contact and the closest-points
-/// tables. Other pairs keep Bullet's algorithms (spheres and capsules meet the
-/// shape's triangles through btConvexConcaveCollisionAlgorithm).
+/// Registers the SmartCollision algorithms for ScBulletShape against ScBulletShape,
+/// btBoxShape, btConvexHullShape, btSphereShape, btCapsuleShape (ScCollisionAlgorithm)
+/// and btStaticPlaneShape (ScPlaneAlgorithm), both orders, in the contact and the
+/// closest-points tables. Pairs of Bullet shapes keep Bullet's algorithms.
 /// @return the plugin (keep it alive as long as the dispatcher); InvalidArgument for
 ///   a null dispatcher or bad settings; InvalidOperation when the dispatcher's
 ///   algorithm pool is too small (use collisionConstructionInfo()).

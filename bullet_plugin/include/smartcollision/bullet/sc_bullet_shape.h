@@ -6,6 +6,7 @@
 #include <btBulletCollisionCommon.h>
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "smartcollision/bullet/mass_properties.h"
@@ -48,6 +49,9 @@ class ScBulletShape : public btConcaveShape {
   /// The stored triangles in the shape frame (for drawing).
   const std::vector<btVector3>& vertices() const { return vertices_; }
   const std::vector<int>& indices() const { return indices_; }
+  /// Corners of the convex hull of the stored vertices (shape frame), computed on
+  /// first use: where the shape meets a plane, only these can be deepest.
+  const std::vector<btVector3>& hullVertices() const;
 
   double aabbMargin() const { return aabb_margin_; }
   void setAabbMargin(double margin);
@@ -78,6 +82,8 @@ class ScBulletShape : public btConcaveShape {
   double aabb_margin_ = 0.04;
   std::vector<btVector3> vertices_;
   std::vector<int> indices_;
+  mutable std::once_flag hull_once_;
+  mutable std::vector<btVector3> hull_vertices_;
 };
 
 }  // namespace sc::bullet

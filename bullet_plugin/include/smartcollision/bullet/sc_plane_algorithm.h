@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// ScPlaneAlgorithm: an ScBulletShape against a btStaticPlaneShape, exactly. A
+// half-space needs no model: the translational depth of any body in it is its deepest
+// point's, along the plane's normal, and only the shape's hull corners can be deepest.
+#pragma once
+
+#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
+#include <btBulletCollisionCommon.h>
+
+namespace sc::bullet {
+
+class Plugin;
+
+class ScPlaneAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  /// `closest_points`: for contactTest / closest-point queries (points, no impulses).
+  ScPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                   const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                   Plugin* plugin, bool closest_points);
+  ~ScPlaneAlgorithm() override;
+
+  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                        const btDispatcherInfo& info, btManifoldResult* result) override;
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return btScalar(1);
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override;
+
+ private:
+  Plugin* plugin_;
+  const btCollisionObject* shape_object_;  ///< the ScBulletShape side
+  btPersistentManifold* manifold_ = nullptr;
+  bool closest_points_;
+  /// Seen apart since creation: a body that starts in the plane is pushed out at a
+  /// bounded speed, not by the spring.
+  bool seen_apart_ = false;
+};
+
+}  // namespace sc::bullet

@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: MIT
+// ScPlaneAlgorithm: the deepest hull corner gives distance and depth; the potential
+// model takes it as the pair's result, the manifold model takes every corner within
+// the breaking threshold.
+#include "smartcollision/bullet/sc_plane_algorithm.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "contact_response.h"
+#include "smartcollision/bullet/plugin.h"
+#include "smartcollision/bullet/sc_bullet_shape.h"
+
+namespace sc::bullet {
+
+namespace {
+
+Vec3 toVec(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
+
+/// The plane in world coordinates: unit normal n and offset c (points x with n.x = c).
+struct WorldPlane {
+  btVector3 normal;
+  double offset;
+  double signedDistance(const btVector3& p) const { return double(normal.dot(p)) - offset; }
+};
+
+WorldPlane worldPlane(const btCollisionObjectWrapper* w) {
+  const auto* plane = static_cast<const btStaticPlaneShape*>(w->getCollisionShape());
+  const btTransform& t = w->getWorldTransform();
+  WorldPlane p;
+  p.normal = (t.getBasis() * plane->getPlaneNormal()).normalized();
+  p.offset = double(p.normal.dot(t(plane->getPlaneNormal() * plane->getPlaneConstant())));
+  return p;
+}
+
+/// Result of the shape (target) against the plane (opponent), as the core would report
+/// it: exact, since a half-space's depth is the deepest point's.
+DirectedResult planeResult(const WorldPlane& plane, const btTransform& t,
+                           const std::vector<btVector3>& hull) {
+  double deepest = std::numeric_limits<double>::infinity();
+  btVector3 point(0, 0, 0);
+  for (const btVector3& v : hull) {
+    const btVector3 w = t(v);
+    const double s = plane.signedDistance(w);
+    if (s < deepest) {
+      deepest = s;
+      point = w;
+    }
+  }
+  DirectedResult r;
+  if (hull.empty()) return r;
+  const Vec3 n = toVec(plane.normal);
+  r.code = ErrorCode::Ok;
+  r.distance = deepest;
+  r.normal = n;
+  r.point_on_target = toVec(point);
+  r.point_on_opponent = r.point_on_target - deepest * n;
+  r.tpdv = deepest < 0.0 ? Vec3(deepest * n) : Vec3::Zero();
+  r.contact_position = toVec(t.getOrigin()) - r.tpdv;
+  const btQuaternion q = t.getRotation();
+  r.contact_orientation = Quat(double(q.w()), double(q.x()), double(q.y()), double(q.z()));
+  return r;
+}
+
+/// Every hull corner closer to the plane than `threshold`, as manifold points.
+void addCornerPoints(const WorldPlane& plane, const btTransform& t,
+                     const std::vector<btVector3>& hull, double threshold, int dir,
+                     btManifoldResult* result) {
+  for (const btVector3& v : hull) {
+    const btVector3 w = t(v);
+    const double s = plane.signedDistance(w);
+    if (s < threshold) detail::addTargetPoint(toVec(plane.normal), toVec(w), s, dir, result);
+  }
+}
+
+}  // namespace
+
+ScPlaneAlgorithm::ScPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                                   const btCollisionObjectWrapper* body0,
+                                   const btCollisionObjectWrapper* body1, Plugin* plugin,
+                                   bool closest_points)
+    : btActivatingCollisionAlgorithm(ci, body0, body1),
+      plugin_(plugin),
+      shape_object_(body0->getCollisionShape()->getShapeType() == kShapeType
+                        ? body0->getCollisionObject()
+                        : body1->getCollisionObject()),
+      closest_points_(closest_points) {
+  if (closest_points_) manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(),
+                                                                body1->getCollisionObject());
+}
+
+ScPlaneAlgorithm::~ScPlaneAlgorithm() {
+  if (manifold_ != nullptr) m_dispatcher->releaseManifold(manifold_);
+}
+
+void ScPlaneAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
+  if (manifold_ != nullptr && !closest_points_) manifolds.push_back(manifold_);
+}
+
+void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                        const btCollisionObjectWrapper* body1,
+                                        const btDispatcherInfo& info, btManifoldResult* result) {
+  const int dir = body0->getCollisionObject() == shape_object_ ? 0 : 1;  // result's body of the shape
+  const btCollisionObjectWrapper* shape_w = dir == 0 ? body0 : body1;
+  const btCollisionObjectWrapper* plane_w = dir == 0 ? body1 : body0;
+  const auto* shape = static_cast<const ScBulletShape*>(shape_w->getCollisionShape());
+  const std::vector<btVector3>& hull = shape->hullVertices();
+  const WorldPlane plane = worldPlane(plane_w);
+  const btTransform& t = shape_w->getWorldTransform();
+  const DirectedResult r = planeResult(plane, t, hull);
+  if (r.code != ErrorCode::Ok) return;
+
+  if (closest_points_) {
+    result->setPersistentManifold(manifold_);
+    if (r.distance <= double(result->m_closestPointDistanceThreshold))
+      detail::addTargetPoint(r.normal, r.point_on_target, r.distance, dir, result);
+    return;
+  }
+  const PluginSettings& ps = plugin_->settings();
+  StepStats& stats = plugin_->stats();
+  ++stats.pairs;
+  if (ps.model == ContactModel::Manifold) {
+    if (manifold_ == nullptr)
+      manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
+    result->setPersistentManifold(manifold_);
+    addCornerPoints(plane, t, hull, double(manifold_->getContactBreakingThreshold()), dir, result);
+    if (manifold_->getNumContacts() > 0) result->refreshContactPoints();
+    return;
+  }
+  if (manifold_ != nullptr) manifold_->clearManifold();  // switched from the manifold model
+  if (!r.penetrating()) {
+    seen_apart_ = true;
+    return;
+  }
+  ++stats.penetrating;
+  stats.max_depth = std::max(stats.max_depth, r.tpdv.norm());
+  const detail::BodySide target = detail::bodySide(shape_w);
+  const detail::BodySide plane_side = detail::bodySide(plane_w);
+  const ContactSettings contact = plugin_->pairSettings(body0->getCollisionObject(),
+                                                        body1->getCollisionObject());
+  const double dt = double(info.m_timeStep);
+  const double friction = double(body0->getCollisionObject()->getFriction() *
+                                 body1->getCollisionObject()->getFriction());
+  const detail::Impulse imp =
+      seen_apart_ ? detail::potentialImpulse(r, target, plane_side, contact, dt, friction,
+                                             ps.query.tolerance)
+                  : detail::recoveryImpulse(target, plane_side, plane.normal, r.tpdv.norm(),
+                                            ps.recovery_speed, contact.contact_period_steps * dt);
+  if (!seen_apart_) ++stats.recovering;
+  detail::deliver(*plugin_, target, plane_side, imp);
+}
+
+}  // namespace sc::bullet

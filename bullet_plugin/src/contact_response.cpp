@@ -47,7 +47,8 @@ BodySide bodySide(const btCollisionObjectWrapper* w) {
   BodySide s;
   s.object = w->getCollisionObject();
   btRigidBody* rb = const_cast<btRigidBody*>(btRigidBody::upcast(s.object));
-  const bool dynamic = rb != nullptr && !s.object->isStaticOrKinematicObject() && rb->getInvMass() > 0;
+  const bool dynamic =
+      rb != nullptr && !s.object->isStaticOrKinematicObject() && rb->getInvMass() > 0;
   s.body = dynamic ? rb : nullptr;
   s.inv_mass = dynamic ? double(rb->getInvMass()) : 0.0;
   s.center = w->getWorldTransform().getOrigin();
@@ -146,7 +147,8 @@ Impulse potentialImpulse(const DirectedResult& r, const BodySide& t, const BodyS
       const double kr = c.torque_stiffness > 0.0 ? c.torque_stiffness : i * omega * omega;
       const double dr = 2.0 * c.damping_ratio * std::sqrt(kr * i);
       const double w_approach = -double((t.angularVelocity() - o.angularVelocity()).dot(e));
-      out.angular = btScalar(springImpulse(i, i, kr, dr, angle, w_approach, dt, kInfinity).total()) * e;
+      out.angular =
+          btScalar(springImpulse(i, i, kr, dr, angle, w_approach, dt, kInfinity).total()) * e;
     }
   }
   return out;

@@ -54,7 +54,8 @@ ModelPtr boxModel(const btVector3& half) {
   // Faces as corner loops (bit patterns of the index), then fans facing outwards.
   const int faces[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4},
                            {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
-  for (const auto& f : faces) addFan({f[0], f[1], f[2], f[3]}, m.vertices, Vec3::Zero(), m.triangles);
+  for (const auto& f : faces)
+    addFan({f[0], f[1], f[2], f[3]}, m.vertices, Vec3::Zero(), m.triangles);
   return convexModel(std::move(m));
 }
 
@@ -100,7 +101,8 @@ ModelPtr coreModel(const Vec3& a, const Vec3& b) {
   m.triangles = {Tri(0, 1, 1)};
   Result<PiecePtr> piece = buildPiece(ModelKind::TriangleSoup, std::move(m));
   if (!piece.hasValue()) return nullptr;
-  return std::make_shared<const Model>(ModelKind::TriangleSoup, std::vector<PiecePtr>{piece.value()});
+  return std::make_shared<const Model>(ModelKind::TriangleSoup,
+                                       std::vector<PiecePtr>{piece.value()});
 }
 
 ModelPtr capsuleModel(const btCapsuleShape& capsule) {
@@ -186,7 +188,8 @@ struct Plugin::CreateFuncs {
     Plugin* plugin;
     bool closest_points;
   };
-  explicit CreateFuncs(Plugin* p) : contact(p, false), closest(p, true), plane(p, false), plane_closest(p, true) {}
+  explicit CreateFuncs(Plugin* p)
+      : contact(p, false), closest(p, true), plane(p, false), plane_closest(p, true) {}
   Func<ScCollisionAlgorithm> contact;
   Func<ScCollisionAlgorithm> closest;
   Func<ScPlaneAlgorithm> plane;
@@ -259,15 +262,18 @@ void Plugin::applyImpulses() {
   impulses_.clear();
 }
 
-btCollisionAlgorithmCreateFunc* Plugin::contactCreateFunc() const { return &create_funcs_->contact; }
+btCollisionAlgorithmCreateFunc* Plugin::contactCreateFunc() const {
+  return &create_funcs_->contact;
+}
 
 btCollisionAlgorithmCreateFunc* Plugin::closestPointsCreateFunc() const {
   return &create_funcs_->closest;
 }
 
 btCollisionAlgorithmCreateFunc* Plugin::planeCreateFunc(bool closest_points) const {
-  return closest_points ? static_cast<btCollisionAlgorithmCreateFunc*>(&create_funcs_->plane_closest)
-                        : &create_funcs_->plane;
+  return closest_points
+             ? static_cast<btCollisionAlgorithmCreateFunc*>(&create_funcs_->plane_closest)
+             : &create_funcs_->plane;
 }
 
 btDefaultCollisionConstructionInfo collisionConstructionInfo() {
@@ -288,8 +294,12 @@ Result<std::shared_ptr<Plugin>> registerSmartCollision(btCollisionDispatcher* di
                   "the dispatcher's algorithm pool is too small: build the collision "
                   "configuration from sc::bullet::collisionConstructionInfo()");
   auto plugin = std::make_shared<Plugin>(settings);
-  const int others[] = {kShapeType,          BOX_SHAPE_PROXYTYPE,    CONVEX_HULL_SHAPE_PROXYTYPE,
-                        SPHERE_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE};
+  const int others[] = {kShapeType,
+                        BOX_SHAPE_PROXYTYPE,
+                        CONVEX_HULL_SHAPE_PROXYTYPE,
+                        SPHERE_SHAPE_PROXYTYPE,
+                        CAPSULE_SHAPE_PROXYTYPE,
+                        STATIC_PLANE_PROXYTYPE};
   for (int other : others) {
     const bool plane = other == STATIC_PLANE_PROXYTYPE;
     for (int order = 0; order < 2; ++order) {

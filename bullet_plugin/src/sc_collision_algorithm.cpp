@@ -71,9 +71,9 @@ void makeSide(const btCollisionObjectWrapper* w, const Model* model, Side& s) {
   const btVector3 half = 0.5 * (hi - lo);
   const btVector3 center = t(0.5 * (hi + lo));
   const btMatrix3x3 abs_basis = t.getBasis().absolute();
-  const btVector3 extent = btVector3(abs_basis[0].dot(half), abs_basis[1].dot(half),
-                                     abs_basis[2].dot(half)) +
-                           btVector3(1, 1, 1) * btScalar(s.radius);
+  const btVector3 extent =
+      btVector3(abs_basis[0].dot(half), abs_basis[1].dot(half), abs_basis[2].dot(half)) +
+      btVector3(1, 1, 1) * btScalar(s.radius);
   s.aabb_min = center - extent;
   s.aabb_max = center + extent;
 }
@@ -139,7 +139,8 @@ void addFeaturePoints(const DirectedResult& r, const Side& target, int dir, doub
   const Rigid world_from_t = target.view.placement.worldFromLocal();
   auto add = [&](int vi) {
     // On the surface of a rounded target: its core corner, radius towards O.
-    const Vec3 p = world_from_t * mesh.vertices[static_cast<std::size_t>(vi)] - target.radius * r.normal;
+    const Vec3 p =
+        world_from_t * mesh.vertices[static_cast<std::size_t>(vi)] - target.radius * r.normal;
     const double depth = r.normal.dot(p - r.point_on_opponent);
     if (depth < threshold) detail::addTargetPoint(r.normal, p, depth, dir, result);
   };
@@ -149,7 +150,8 @@ void addFeaturePoints(const DirectedResult& r, const Side& target, int dir, doub
   }
   if (f.type == FeatureType::Vertex) return;
   for (int k = 0; k < f.count(); ++k)
-    if (f.vertices[k] >= 0 && f.vertices[k] < static_cast<int>(mesh.vertices.size())) add(f.vertices[k]);
+    if (f.vertices[k] >= 0 && f.vertices[k] < static_cast<int>(mesh.vertices.size()))
+      add(f.vertices[k]);
 }
 
 /// Smallest-overlap axis of two AABBs as a manifold point (first-seen intersections).
@@ -157,7 +159,8 @@ void addOverlapPoint(const Side& a, const Side& b, btManifoldResult* result) {
   int axis = 0;
   double overlap = 0.0;
   for (int k = 0; k < 3; ++k) {
-    const double ov = std::min(a.aabb_max[k], b.aabb_max[k]) - std::max(a.aabb_min[k], b.aabb_min[k]);
+    const double ov =
+        std::min(a.aabb_max[k], b.aabb_max[k]) - std::max(a.aabb_min[k], b.aabb_min[k]);
     if (k == 0 || ov < overlap) {
       overlap = ov;
       axis = k;
@@ -187,7 +190,9 @@ SceneSettings pairQuerySettings(const SceneSettings& base, const ContactSettings
   const double omega = kTwoPi / (contact.contact_period_steps * (dt > 0.0 ? dt : 1.0 / 60.0));
   const bool set_t = contact.force_stiffness > 0.0, set_r = contact.torque_stiffness > 0.0;
   query.force_stiffness = set_t ? contact.force_stiffness : set_r ? m * omega * omega : m;
-  query.torque_stiffness = set_r ? contact.torque_stiffness : set_t ? inertia * omega * omega : inertia;
+  query.torque_stiffness = set_r   ? contact.torque_stiffness
+                           : set_t ? inertia * omega * omega
+                                   : inertia;
   return query;
 }
 
@@ -216,10 +221,10 @@ ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructio
     : btActivatingCollisionAlgorithm(ci, body0, body1),
       plugin_(plugin),
       objects_{body0->getCollisionObject(), body1->getCollisionObject()},
-      models_{modelOf(*plugin, body0->getCollisionShape()), modelOf(*plugin, body1->getCollisionShape())},
+      models_{modelOf(*plugin, body0->getCollisionShape()),
+              modelOf(*plugin, body1->getCollisionShape())},
       closest_points_(closest_points) {
-  if (closest_points_)
-    manifold_ = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
+  if (closest_points_) manifold_ = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
 }
 
 ScCollisionAlgorithm::~ScCollisionAlgorithm() {
@@ -232,7 +237,8 @@ void ScCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
 
 void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                             const btCollisionObjectWrapper* body1,
-                                            const btDispatcherInfo& info, btManifoldResult* result) {
+                                            const btDispatcherInfo& info,
+                                            btManifoldResult* result) {
   // The pair keeps its order for its life; side i is objects_[i] in any case, so
   // the tracker's directions stay attached to the same bodies.
   if (!models_[0] || !models_[1]) return;
@@ -298,10 +304,11 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
         addFeaturePoints(r, t, swapped ? 1 - dir : dir, threshold, result);
         any_point = true;
       } else if (potential && r.penetrating()) {
-        imp = (seen_apart_[dir] ? detail::potentialImpulse(r, t.body, o.body, contact, dt, friction,
-                                                               query.tolerance)
-                                  : detail::recoveryImpulse(t.body, o.body, toBt(r.normal),
-                                                            r.tpdv.norm(), ps.recovery_speed, period));
+        imp =
+            (seen_apart_[dir] ? detail::potentialImpulse(r, t.body, o.body, contact, dt, friction,
+                                                         query.tolerance)
+                              : detail::recoveryImpulse(t.body, o.body, toBt(r.normal),
+                                                        r.tpdv.norm(), ps.recovery_speed, period));
       }
     }
     detail::deliver(*plugin_, t.body, o.body, imp);

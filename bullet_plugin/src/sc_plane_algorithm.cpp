@@ -85,8 +85,9 @@ ScPlaneAlgorithm::ScPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& c
                         ? body0->getCollisionObject()
                         : body1->getCollisionObject()),
       closest_points_(closest_points) {
-  if (closest_points_) manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(),
-                                                                body1->getCollisionObject());
+  if (closest_points_)
+    manifold_ =
+        m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
 }
 
 ScPlaneAlgorithm::~ScPlaneAlgorithm() {
@@ -100,7 +101,8 @@ void ScPlaneAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
 void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                         const btCollisionObjectWrapper* body1,
                                         const btDispatcherInfo& info, btManifoldResult* result) {
-  const int dir = body0->getCollisionObject() == shape_object_ ? 0 : 1;  // result's body of the shape
+  const int dir =
+      body0->getCollisionObject() == shape_object_ ? 0 : 1;  // result's body of the shape
   const btCollisionObjectWrapper* shape_w = dir == 0 ? body0 : body1;
   const btCollisionObjectWrapper* plane_w = dir == 0 ? body1 : body0;
   const auto* shape = static_cast<const ScBulletShape*>(shape_w->getCollisionShape());
@@ -121,7 +123,8 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   ++stats.pairs;
   if (ps.model == ContactModel::Manifold) {
     if (manifold_ == nullptr)
-      manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
+      manifold_ =
+          m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
     result->setPersistentManifold(manifold_);
     addCornerPoints(plane, t, hull, double(manifold_->getContactBreakingThreshold()), dir, result);
     if (manifold_->getNumContacts() > 0) result->refreshContactPoints();
@@ -136,8 +139,8 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   stats.max_depth = std::max(stats.max_depth, r.tpdv.norm());
   const detail::BodySide target = detail::bodySide(shape_w);
   const detail::BodySide plane_side = detail::bodySide(plane_w);
-  const ContactSettings contact = plugin_->pairSettings(body0->getCollisionObject(),
-                                                        body1->getCollisionObject());
+  const ContactSettings contact =
+      plugin_->pairSettings(body0->getCollisionObject(), body1->getCollisionObject());
   const double dt = double(info.m_timeStep);
   const double friction = double(body0->getCollisionObject()->getFriction() *
                                  body1->getCollisionObject()->getFriction());

@@ -43,7 +43,8 @@ btRigidBody* addMeshGround(BulletWorld& w) {
 }
 
 btRigidBody* addPlaneGround(BulletWorld& w) {
-  return w.addBody(std::make_shared<btStaticPlaneShape>(btVector3(0, 1, 0), 0), 0.0, btVector3(0, 0, 0));
+  return w.addBody(std::make_shared<btStaticPlaneShape>(btVector3(0, 1, 0), 0), 0.0,
+                   btVector3(0, 0, 0));
 }
 
 TEST(PrimitiveModels, SphereAndCapsuleAreTheirCoresNotTriangles) {
@@ -61,14 +62,16 @@ TEST(PrimitiveModels, SphereAndCapsuleAreTheirCoresNotTriangles) {
   }
   const MeshData& segment = w.plugin->primitiveModel(&capsule)->pieces()[0]->mesh();
   EXPECT_NEAR(std::abs(segment.vertices[0].z() - segment.vertices[1].z()), 1.0, 1e-12);
-  EXPECT_NEAR(segment.vertices[0].head<2>().norm() + segment.vertices[1].head<2>().norm(), 0.0, 1e-12);
+  EXPECT_NEAR(segment.vertices[0].head<2>().norm() + segment.vertices[1].head<2>().norm(), 0.0,
+              1e-12);
 }
 
 TEST(PrimitiveDistance, SphereAboveMeshBoxIsCentreHeightMinusRadius) {
   BulletWorld w(ContactModel::Potential, 0.0);
   btRigidBody* ground = addMeshGround(w);
   for (double y : {1.5, 0.9, 0.31}) {
-    btRigidBody* ball = w.addBody(std::make_shared<btSphereShape>(0.3f), 1.0, btVector3(0.4f, btScalar(y), -1));
+    btRigidBody* ball =
+        w.addBody(std::make_shared<btSphereShape>(0.3f), 1.0, btVector3(0.4f, btScalar(y), -1));
     EXPECT_NEAR(closestDistance(w, ball, ground), y - 0.3, kExact) << "centre height " << y;
     EXPECT_NEAR(closestDistance(w, ground, ball), y - 0.3, kExact) << "centre height " << y;
     w.world->removeRigidBody(ball);
@@ -79,9 +82,9 @@ TEST(PrimitiveDistance, TiltedCapsuleAboveMeshBoxIsLowestEndMinusRadius) {
   BulletWorld w(ContactModel::Potential, 0.0);
   btRigidBody* ground = addMeshGround(w);
   const double tilt = 0.4, half = 0.6, radius = 0.15, y = 1.2;
-  btRigidBody* capsule = w.addBody(std::make_shared<btCapsuleShapeX>(btScalar(radius), btScalar(2 * half)),
-                                   1.0, btVector3(0, btScalar(y), 0),
-                                   btQuaternion(btVector3(0, 0, 1), btScalar(tilt)));
+  btRigidBody* capsule =
+      w.addBody(std::make_shared<btCapsuleShapeX>(btScalar(radius), btScalar(2 * half)), 1.0,
+                btVector3(0, btScalar(y), 0), btQuaternion(btVector3(0, 0, 1), btScalar(tilt)));
   const double expected = y - half * std::sin(tilt) - radius;
   EXPECT_NEAR(closestDistance(w, capsule, ground), expected, kExact);
 }
@@ -90,8 +93,9 @@ TEST(PrimitiveDistance, RotatedMeshBoxAbovePlaneIsLowestCornerHeight) {
   BulletWorld w(ContactModel::Potential, 0.0);
   btRigidBody* plane = addPlaneGround(w);
   const double angle = 0.5, y = 1.3;
-  btRigidBody* box = w.addBody(boxShape(btVector3(0.5, 0.5, 0.5)), 1.0, btVector3(2, btScalar(y), 3),
-                               btQuaternion(btVector3(0, 0, 1), btScalar(angle)));
+  btRigidBody* box =
+      w.addBody(boxShape(btVector3(0.5, 0.5, 0.5)), 1.0, btVector3(2, btScalar(y), 3),
+                btQuaternion(btVector3(0, 0, 1), btScalar(angle)));
   const double lowest = y - 0.5 * (std::cos(angle) + std::sin(angle));
   EXPECT_NEAR(closestDistance(w, box, plane), lowest, kExact);
   EXPECT_NEAR(closestDistance(w, plane, box), lowest, kExact);
@@ -127,7 +131,8 @@ TEST_P(PrimitiveRest, SphereRestsOnMeshBox) {
 TEST_P(PrimitiveRest, LyingCapsuleRestsLevelOnMeshBox) {
   BulletWorld w(GetParam());
   addMeshGround(w);
-  btRigidBody* capsule = w.addBody(std::make_shared<btCapsuleShapeX>(0.2f, 1.0f), 1.0, btVector3(0, 0.5f, 0));
+  btRigidBody* capsule =
+      w.addBody(std::make_shared<btCapsuleShapeX>(0.2f, 1.0f), 1.0, btVector3(0, 0.5f, 0));
   const double speed = settle(w, capsule, 3.0);
   const btVector3 axis = capsule->getWorldTransform().getBasis() * btVector3(1, 0, 0);
   EXPECT_NEAR(double(capsule->getCenterOfMassPosition().y()), 0.2, kRestBound);
@@ -140,7 +145,8 @@ TEST_P(PrimitiveRest, MeshBoxStackStandsOnStaticPlane) {
   addPlaneGround(w);
   btRigidBody* boxes[3];
   for (int i = 0; i < 3; ++i)
-    boxes[i] = w.addBody(boxShape(btVector3(0.5, 0.5, 0.5)), 1.0, btVector3(0, btScalar(0.51 + 1.01 * i), 0));
+    boxes[i] = w.addBody(boxShape(btVector3(0.5, 0.5, 0.5)), 1.0,
+                         btVector3(0, btScalar(0.51 + 1.01 * i), 0));
   const double speed = settle(w, boxes[2], 4.0);
   EXPECT_NEAR(double(boxes[0]->getCenterOfMassPosition().y()), 0.5, kRestBound);
   EXPECT_NEAR(double(boxes[2]->getCenterOfMassPosition().y()), 2.5, 3 * kRestBound);
@@ -168,7 +174,8 @@ TEST(PrimitiveTunnelling, SmallSphereAtFiftyMetresPerSecondNeverPassesThinWall) 
     ASSERT_TRUE(shape.ok()) << shape.status().message();
     w.addBody(shape.value(), 0.0, btVector3(0, 0, 0));
     const double start = 1.0 + phase * kSpeed * w.dt / kPhases;
-    btRigidBody* ball = w.addBody(std::make_shared<btSphereShape>(0.05f), 0.1, btVector3(btScalar(start), 0, 0));
+    btRigidBody* ball =
+        w.addBody(std::make_shared<btSphereShape>(0.05f), 0.1, btVector3(btScalar(start), 0, 0));
     ball->setLinearVelocity(btVector3(btScalar(-kSpeed), 0, 0));
     double min_x = start;
     for (int i = 0; i < 120; ++i) {

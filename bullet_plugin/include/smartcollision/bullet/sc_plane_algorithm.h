@@ -19,8 +19,9 @@ class ScPlaneAlgorithm : public btActivatingCollisionAlgorithm {
                    Plugin* plugin, bool closest_points);
   ~ScPlaneAlgorithm() override;
 
-  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
-                        const btDispatcherInfo& info, btManifoldResult* result) override;
+  void processCollision(const btCollisionObjectWrapper* body0,
+                        const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                        btManifoldResult* result) override;
   btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
                                  btManifoldResult*) override {
     return btScalar(1);

@@ -406,13 +406,17 @@ void GroupPairQuery::traverse(Policy& policy) {
   }
 }
 
-double GroupPairQuery::knownLowerBound(const Rigid& o_from_t) const {
-  if (!known_) return -kInfinity;
+double GroupPairQuery::displacementBound(const Rigid& from, const Rigid& to) const {
   // A target point p = c + q (|q| <= radius) moves by at most
   // |(X - K) c| + ||R_X - R_K|| radius; the Frobenius norm bounds the spectral one.
-  const double centre_shift = (o_from_t * t_center_ - known_pose_ * t_center_).norm();
-  const double spin = (o_from_t.rotation - known_pose_.rotation).norm();
-  return known_gap_ - centre_shift - spin * t_radius_;
+  const double centre_shift = (to * t_center_ - from * t_center_).norm();
+  const double spin = (to.rotation - from.rotation).norm();
+  return centre_shift + spin * t_radius_;
+}
+
+double GroupPairQuery::knownLowerBound(const Rigid& o_from_t) const {
+  if (!known_) return -kInfinity;
+  return known_gap_ - displacementBound(known_pose_, o_from_t);
 }
 
 // ---------------------------------------------------------------------------
@@ -509,8 +513,9 @@ void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
 }
 
 bool GroupPairQuery::nearCovers(const Rigid& o_from_t, double reach) const {
-  return near_valid_ && o_from_t.rotation == near_pose_.rotation &&
-         (o_from_t.translation - near_pose_.translation).norm() + reach <= near_reach_;
+  // Gaps are 1-Lipschitz in the target's point displacements: a small turn (a resting
+  // body nudged by a solver) keeps the pairs as a small translation does.
+  return near_valid_ && displacementBound(near_pose_, o_from_t) + reach <= near_reach_;
 }
 
 void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, double margin,
@@ -662,7 +667,7 @@ double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, 
     traverse(policy);
     return policy.limit;
   }
-  const double moved = (o_from_t.translation - near_pose_.translation).norm();
+  const double moved = displacementBound(near_pose_, o_from_t);
   for (const LeafContact& candidate : near_pairs_) {
     if (policy.prunes(candidate.gap - moved)) continue;
     if (!policy.visit(leafPair(candidate.t_leaf, candidate.o_leaf))) break;

@@ -92,11 +92,11 @@ class GroupPairQuery {
   /// to `out` after clearing it, nearest first (ties by leaf indices).
   void contacts(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
 
-  /// contacts() for poses that differ by small translations, as a proxy sliding at a
-  /// fixed rotation makes: one traversal with threshold + `margin` keeps its pairs,
-  /// and later calls at the same rotation within `margin` of that pose evaluate only
-  /// those (a translation by d changes every gap by at most d). Same output as
-  /// contacts().
+  /// contacts() for poses that differ by small motions, as a sliding proxy or a
+  /// resting body makes: one traversal with threshold + `margin` keeps its pairs, and
+  /// later calls whose target points moved less than `margin` from that pose
+  /// (displacementBound) evaluate only those (moving every point by at most d changes
+  /// every gap by at most d). Same output as contacts().
   void contactsNear(const Rigid& o_from_t, double threshold, double margin,
                     std::vector<LeafContact>& out);
 
@@ -165,6 +165,8 @@ class GroupPairQuery {
   void placeTargets(const Rigid& o_from_t);
   double sphereBound(const NodePair& p) const;
   double nodeLowerBound(const NodePair& p, double max_distance);
+  /// Largest displacement of a target point from pose `from` to pose `to`.
+  double displacementBound(const Rigid& from, const Rigid& to) const;
   /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.
   bool nearCovers(const Rigid& o_from_t, double reach) const;
   /// GJK on a leaf pair, the target piece placed by `o_from_piece`.

@@ -113,6 +113,7 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
     return;
   }
   previous_proxy_ = proxy_;
+  touch_normal_.setZero();
   // A proxy stopped short of a free goal still reports a depth: the goal was reached
   // through the opponent (a thin wall), or the proxy lags and catches up later.
   const bool reached = follow(query, goal, center, settings, out);
@@ -120,6 +121,10 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
     penetrating_ = false;
     proxy_ = goal;
     reportApart(query, goal, settings, out);
+    // A goal that only touches has no normal of its own (its closest points
+    // coincide): keep the one of the contact the proxy rested on.
+    if (out.code == ErrorCode::Ok && out.distance <= 0.0 && !touch_normal_.isZero(0.0))
+      out.contact.normal = touch_normal_;
     return;
   }
   penetrating_ = true;
@@ -182,7 +187,10 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
   const Vec3 rpdv = contact_pose.rotation == goal.rotation
                         ? Vec3::Zero()
                         : rotationVector(goal.rotation * contact_pose.rotation.transpose());
-  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) return false;  // the goal only touches
+  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) {  // the goal only touches
+    if (main >= 0) touch_normal_ = normal;
+    return false;
+  }
   out.code = ErrorCode::Ok;
   out.penetrating = true;
   out.contact_pose = contact_pose;

@@ -85,6 +85,7 @@ class ProxyTracker {
   std::vector<LeafContact> contacts_;
   std::vector<Row> rows_;
   std::vector<LeafPair> skip_;  ///< the current contacts, sorted
+  Vec3 touch_normal_ = Vec3::Zero();  ///< main contact's normal when the goal only touches
   TwistScratch twist_;          ///< Free and Mix work arrays
 };
 

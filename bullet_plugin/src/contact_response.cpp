@@ -154,6 +154,17 @@ Impulse potentialImpulse(const DirectedResult& r, const BodySide& t, const BodyS
   return out;
 }
 
+double springReach(const BodySide& t, const BodySide& o, const ContactSettings& c, double dt,
+                   double speed) {
+  const double inv_m = t.inv_mass + o.inv_mass;
+  if (!(inv_m > 0.0) || !(dt > 0.0)) return 0.0;
+  const double m = 1.0 / inv_m;
+  const double omega = kTwoPi / (c.contact_period_steps * dt);
+  const double k = std::min(c.force_stiffness > 0.0 ? c.force_stiffness : m * omega * omega,
+                            m / (dt * dt));
+  return speed * std::sqrt(m / k);
+}
+
 Impulse recoveryImpulse(const BodySide& t, const BodySide& o, const btVector3& u, double depth,
                         double speed, double period) {
   Impulse out;

@@ -50,6 +50,11 @@ struct Impulse {
 Impulse potentialImpulse(const DirectedResult& r, const BodySide& t, const BodySide& o,
                          const ContactSettings& c, double dt, double friction, double impact);
 
+/// The depth whose spring energy 1/2 k d^2 equals the recovery bound 1/2 m_red
+/// speed^2: a pair first seen within it can take the spring at once (speed / omega).
+double springReach(const BodySide& t, const BodySide& o, const ContactSettings& c, double dt,
+                   double speed);
+
 /// Pushes T away from O along unit `u` so that they separate at depth / period, at
 /// most `speed`: relative kinetic energy at most 1/2 m_red speed^2.
 Impulse recoveryImpulse(const BodySide& t, const BodySide& o, const btVector3& u, double depth,

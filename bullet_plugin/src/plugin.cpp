@@ -157,6 +157,9 @@ SceneSettings defaultQuerySettings() {
   // core's Mix settles.
   SceneSettings s;
   s.rotation_mode = RotationMode::Input;
+  // Bodies spawned touching or overlapping get a depth (and a contact) at once,
+  // rather than no result until they are pushed apart.
+  s.resolve_initial_intersection = true;
   return s;
 }
 

@@ -292,23 +292,27 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
         tracker_.forget(dir);
         continue;
       }
-      if (!r.penetrating()) seen_apart_[dir] = true;
+      // The spring takes over once the pair was seen apart, or at once when the first
+      // depth is small enough that its spring energy fits the recovery bound.
+      if (!r.penetrating() || r.tpdv.norm() <= detail::springReach(t.body, o.body, contact, dt,
+                                                                   ps.recovery_speed))
+        spring_on_[dir] = true;
       if (r.penetrating()) {
         ++stats.penetrating;
         stats.max_depth = std::max(stats.max_depth, r.tpdv.norm());
         stats.max_rotation = std::max(stats.max_rotation, r.rpdv.norm());
       }
       const double threshold = potential ? 0.0 : double(manifold_->getContactBreakingThreshold());
-      if (!potential && r.distance < threshold) {
+      if (r.penetrating() && !spring_on_[dir]) {
+        ++stats.recovering;
+        imp = detail::recoveryImpulse(t.body, o.body, toBt(r.normal), r.tpdv.norm(),
+                                      ps.recovery_speed, period);
+      } else if (!potential && r.distance < threshold) {
         addPoint(r, swapped ? 1 - dir : dir, r.distance, result);
         addFeaturePoints(r, t, swapped ? 1 - dir : dir, threshold, result);
         any_point = true;
       } else if (potential && r.penetrating()) {
-        imp =
-            (seen_apart_[dir] ? detail::potentialImpulse(r, t.body, o.body, contact, dt, friction,
-                                                         query.tolerance)
-                              : detail::recoveryImpulse(t.body, o.body, toBt(r.normal),
-                                                        r.tpdv.norm(), ps.recovery_speed, period));
+        imp = detail::potentialImpulse(r, t.body, o.body, contact, dt, friction, query.tolerance);
       }
     }
     detail::deliver(*plugin_, t.body, o.body, imp);

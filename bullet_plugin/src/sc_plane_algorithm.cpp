@@ -121,7 +121,18 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   const PluginSettings& ps = plugin_->settings();
   StepStats& stats = plugin_->stats();
   ++stats.pairs;
-  if (ps.model == ContactModel::Manifold) {
+  const detail::BodySide target = detail::bodySide(shape_w);
+  const detail::BodySide plane_side = detail::bodySide(plane_w);
+  const ContactSettings contact =
+      plugin_->pairSettings(body0->getCollisionObject(), body1->getCollisionObject());
+  const double dt = double(info.m_timeStep);
+  // As ScCollisionAlgorithm: the response starts once the body was seen out of the
+  // plane or within the depth whose spring energy fits the recovery bound.
+  if (!r.penetrating() ||
+      r.tpdv.norm() <= detail::springReach(target, plane_side, contact, dt, ps.recovery_speed))
+    spring_on_ = true;
+  const bool recover = r.penetrating() && !spring_on_;
+  if (ps.model == ContactModel::Manifold && !recover) {
     if (manifold_ == nullptr)
       manifold_ =
           m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
@@ -130,26 +141,20 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
     if (manifold_->getNumContacts() > 0) result->refreshContactPoints();
     return;
   }
-  if (manifold_ != nullptr) manifold_->clearManifold();  // switched from the manifold model
-  if (!r.penetrating()) {
-    seen_apart_ = true;
-    return;
-  }
+  if (manifold_ != nullptr) manifold_->clearManifold();  // other model, or recovering
+  if (!r.penetrating()) return;
   ++stats.penetrating;
   stats.max_depth = std::max(stats.max_depth, r.tpdv.norm());
-  const detail::BodySide target = detail::bodySide(shape_w);
-  const detail::BodySide plane_side = detail::bodySide(plane_w);
-  const ContactSettings contact =
-      plugin_->pairSettings(body0->getCollisionObject(), body1->getCollisionObject());
-  const double dt = double(info.m_timeStep);
   const double friction = double(body0->getCollisionObject()->getFriction() *
                                  body1->getCollisionObject()->getFriction());
-  const detail::Impulse imp =
-      seen_apart_ ? detail::potentialImpulse(r, target, plane_side, contact, dt, friction,
-                                             ps.query.tolerance)
-                  : detail::recoveryImpulse(target, plane_side, plane.normal, r.tpdv.norm(),
-                                            ps.recovery_speed, contact.contact_period_steps * dt);
-  if (!seen_apart_) ++stats.recovering;
+  detail::Impulse imp;
+  if (recover) {
+    ++stats.recovering;
+    imp = detail::recoveryImpulse(target, plane_side, plane.normal, r.tpdv.norm(),
+                                  ps.recovery_speed, contact.contact_period_steps * dt);
+  } else {
+    imp = detail::potentialImpulse(r, target, plane_side, contact, dt, friction, ps.query.tolerance);
+  }
   detail::deliver(*plugin_, target, plane_side, imp);
 }
 

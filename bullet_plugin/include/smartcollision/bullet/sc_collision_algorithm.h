@@ -36,9 +36,10 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   ModelPtr models_[2];  ///< per side; null: a shape the algorithm cannot take (ignored)
   btPersistentManifold* manifold_ = nullptr;
   bool closest_points_;
-  /// Per direction: seen apart since creation. A depth before that (a pair that
-  /// starts intersecting) gets the bounded recovery push, not the spring.
-  bool seen_apart_[2] = {false, false};
+  /// Per direction: the spring (or the manifold) responds; set once the pair is seen
+  /// apart or within detail::springReach. Before that a depth (a pair that starts
+  /// deeply intersecting) gets the bounded recovery push.
+  bool spring_on_[2] = {false, false};
   PairTracker tracker_;
 };
 

@@ -33,9 +33,10 @@ class ScPlaneAlgorithm : public btActivatingCollisionAlgorithm {
   const btCollisionObject* shape_object_;  ///< the ScBulletShape side
   btPersistentManifold* manifold_ = nullptr;
   bool closest_points_;
-  /// Seen apart since creation: a body that starts in the plane is pushed out at a
-  /// bounded speed, not by the spring.
-  bool seen_apart_ = false;
+  /// The response acts (seen out of the plane, or first seen within
+  /// detail::springReach); before that a body deep in the plane is pushed out at a
+  /// bounded speed.
+  bool spring_on_ = false;
 };
 
 }  // namespace sc::bullet

@@ -31,7 +31,8 @@ struct ContactSettings {
 };
 
 /// The core's query settings the plugin starts from: the core's defaults, rotation
-/// mode Input (translational depth; Mix/Free are settable, see docs/bullet.md).
+/// mode Input (translational depth; Mix/Free are settable, see docs/bullet.md), and
+/// resolve_initial_intersection on (pairs first seen intersecting get a depth).
 SceneSettings defaultQuerySettings();
 
 struct PluginSettings {
@@ -40,10 +41,11 @@ struct PluginSettings {
   /// Tolerance, iterations and rotation mode of the dynamic penetration depth. The
   /// plugin sets force_stiffness / torque_stiffness per pair (they weigh Mix).
   SceneSettings query = defaultQuerySettings();
-  /// Pairs that start intersecting are pushed apart at overlap / contact period, at
-  /// most this speed [m/s] (relative kinetic energy at most 1/2 m_red v^2): along
-  /// their depth's normal when the core gives one, else along the smallest overlap
-  /// axis of their AABBs.
+  /// Pairs that start intersecting deeper than the spring can take (its energy
+  /// 1/2 k d^2 above 1/2 m_red v^2, i.e. d > v / omega) are pushed apart at overlap /
+  /// contact period, at most this speed v [m/s]: along their depth's normal when the
+  /// core gives one, else along the smallest overlap axis of their AABBs. Shallower
+  /// ones (bodies spawned touching) get the contact model at once.
   double recovery_speed = 1.0;
 };
 

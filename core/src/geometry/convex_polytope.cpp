@@ -23,6 +23,14 @@ void ConvexPolytope::finalize() {
     adjacency.insert(adjacency.end(), list.begin(), list.end());
     adjacency_start[v + 1] = static_cast<int>(adjacency.size());
   }
+  vertex_face_start.assign(n + 1, 0);
+  for (const Tri& f : faces)
+    for (int k = 0; k < 3; ++k) ++vertex_face_start[f[k] + 1];
+  for (int v = 0; v < n; ++v) vertex_face_start[v + 1] += vertex_face_start[v];
+  vertex_faces.assign(static_cast<std::size_t>(vertex_face_start[n]), -1);
+  std::vector<int> fill(vertex_face_start.begin(), vertex_face_start.end() - 1);
+  for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+    for (int k = 0; k < 3; ++k) vertex_faces[static_cast<std::size_t>(fill[faces[f][k]]++)] = f;
   bounds = Aabb();
   for (const Vec3& p : vertices) bounds.extend(p);
   center = n > 0 ? Vec3(0.5 * (bounds.min + bounds.max)) : Vec3::Zero();

@@ -20,11 +20,15 @@ struct ConvexPolytope {
   /// adjacency[adjacency_start[v] .. adjacency_start[v + 1]).
   std::vector<int> adjacency_start;
   std::vector<int> adjacency;
+  /// Faces around each vertex, CSR like adjacency: where a closest point is found
+  /// from GJK's simplex without scanning every face.
+  std::vector<int> vertex_face_start;
+  std::vector<int> vertex_faces;
   Aabb bounds;
   Vec3 center = Vec3::Zero();  ///< centre of the bounding sphere
   double radius = 0.0;         ///< bounding sphere radius about `center`
 
-  /// Builds adjacency, bounds and bounding sphere from vertices and faces.
+  /// Builds adjacencies, bounds and bounding sphere from vertices and faces.
   void finalize();
 
   /// Index of a vertex maximising dot(direction, vertex). `hint` (in/out) is the

@@ -35,17 +35,28 @@ double featureTolerance(const ConvexPolytope& poly) {
   return 1e-9 * (1.0 + poly.radius + poly.center.norm());
 }
 
+bool realFaceHolds(const ConvexPolytope& poly, int f, const Vec3& local, double tolerance) {
+  if (f >= static_cast<int>(poly.face_source.size()) || poly.face_source[f] < 0) return false;
+  const Tri& t = poly.faces[f];
+  const Vec3 corners[3] = {poly.vertices[t[0]], poly.vertices[t[1]], poly.vertices[t[2]]};
+  return pointTriangleDistance(local, corners) <= tolerance;
+}
+
 /// A real face of the polytope (placed by `frame_from_poly`) that `point` (frame)
-/// lies on within featureTolerance, or -1.
-int realFaceAt(const ConvexPolytope& poly, const Rigid& frame_from_poly, const Vec3& point) {
+/// lies on within featureTolerance, or -1. The faces around GJK's simplex vertices
+/// (`simplex`, `count`) hold it almost always; all faces are scanned otherwise.
+int realFaceAt(const ConvexPolytope& poly, const Rigid& frame_from_poly, const Vec3& point,
+               const int* simplex, int count) {
   const Vec3 local = frame_from_poly.inverse() * point;
   const double tolerance = featureTolerance(poly);
-  for (std::size_t f = 0; f < poly.faces.size() && f < poly.face_source.size(); ++f) {
-    if (poly.face_source[f] < 0) continue;
-    const Tri& t = poly.faces[f];
-    const Vec3 corners[3] = {poly.vertices[t[0]], poly.vertices[t[1]], poly.vertices[t[2]]};
-    if (pointTriangleDistance(local, corners) <= tolerance) return static_cast<int>(f);
+  const int n = static_cast<int>(poly.vertices.size());
+  for (int i = 0; i < count && static_cast<int>(poly.vertex_face_start.size()) == n + 1; ++i) {
+    if (simplex[i] < 0 || simplex[i] >= n) continue;
+    for (int k = poly.vertex_face_start[simplex[i]]; k < poly.vertex_face_start[simplex[i] + 1]; ++k)
+      if (realFaceHolds(poly, poly.vertex_faces[k], local, tolerance)) return poly.vertex_faces[k];
   }
+  for (int f = 0; f < static_cast<int>(poly.faces.size()); ++f)
+    if (realFaceHolds(poly, f, local, tolerance)) return f;
   return -1;
 }
 
@@ -341,8 +352,9 @@ LeafContact GroupPairQuery::exactLeafDistance(const NodePair& p, double bound, b
   const Slot& os = o_slots_[p.o_slot];
   const ConvexPolytope& pt = polytopeOf(t_slots_[p.t_slot], p.t_node);
   const ConvexPolytope& po = polytopeOf(os, p.o_node);
-  const int t_face = realFaceAt(pt, o_from_piece, c.point_t);
-  const int o_face = t_face < 0 ? -1 : realFaceAt(po, os.group_from_piece, c.point_o);
+  const int t_face = realFaceAt(pt, o_from_piece, c.point_t, c.simplex_t, c.simplex_count);
+  const int o_face =
+      t_face < 0 ? -1 : realFaceAt(po, os.group_from_piece, c.point_o, c.simplex_o, c.simplex_count);
   if (o_face >= 0) {
     seedWithFaces(pt.faces[t_face], po.faces[o_face], c);
     return c;

@@ -109,7 +109,10 @@ Impulse potentialImpulse(const DirectedResult& r, const BodySide& t, const BodyS
   if (t.body == nullptr || !(inv_m > 0.0) || !(dt > 0.0)) return out;
   const double m = 1.0 / inv_m;
   const double omega = kTwoPi / (c.contact_period_steps * dt);
-  const double k = c.force_stiffness > 0.0 ? c.force_stiffness : m * omega * omega;
+  // Clamped here, not only in springImpulse: the damping below must be critical for
+  // the stiffness that acts, not for the one requested.
+  const double k = std::min(c.force_stiffness > 0.0 ? c.force_stiffness : m * omega * omega,
+                            m / (dt * dt));
   // Damping: critical for the reduced mass, except that the heavier body of a pair
   // is damped as if its opponent were fixed (its own mass): with the reduced mass a
   // 100 kg box on a 1 kg one is damped at 7% of critical and keeps bouncing. The
@@ -144,7 +147,8 @@ Impulse potentialImpulse(const DirectedResult& r, const BodySide& t, const BodyS
     const double inv_i = t.inverseMomentAbout(e) + o.inverseMomentAbout(e);
     if (inv_i > 0.0) {
       const double i = 1.0 / inv_i;
-      const double kr = c.torque_stiffness > 0.0 ? c.torque_stiffness : i * omega * omega;
+      const double kr = std::min(c.torque_stiffness > 0.0 ? c.torque_stiffness : i * omega * omega,
+                                 i / (dt * dt));
       const double dr = 2.0 * c.damping_ratio * std::sqrt(kr * i);
       const double w_approach = -double((t.angularVelocity() - o.angularVelocity()).dot(e));
       out.angular =

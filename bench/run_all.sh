@@ -26,6 +26,7 @@ run() {  # run <name> <command...>: timed, output kept next to the CSVs
 run mesh_distance "$build/bench/mesh_distance" --csv="$out/mesh_distance.csv"
 run penetration_depth "$build/bench/penetration_depth" --csv-dir="$out"
 run scene_scaling "$build/bench/scene_scaling" --csv="$out/scene_scaling.csv"
+run bullet_stacking "$build/bench/bullet_stacking" --csv-dir="$out"
 if [[ "${SC_BENCH_SOAK:-0}" == 1 ]]; then
   echo "== soak"
   "$root/bench/soak.sh" 1000000 potential "$build" > "$out/soak.csv"
@@ -39,4 +40,10 @@ gnuplot -e "csv='$out/penetration_sweep.csv'; png='$out/penetration_sweep.png'" 
   bench/plot_penetration_sweep.gp
 gnuplot -e "csv='$out/scene_scaling.csv'; png='$out/scene_scaling.png'" \
   bench/plot_scene_scaling.gp
+gnuplot -e "csv='$out/bullet_stacking.csv'; png='$out/bullet_stacking_time.png'" \
+  bench/plot_bullet_stacking_time.gp
+gnuplot -e "csv='$out/bullet_stacking.csv'; png='$out/bullet_drift_jitter.png'" \
+  bench/plot_bullet_drift_jitter.gp
+gnuplot -e "csv='$out/potential_stiffness_vs_dt.csv'; limits='$out/potential_stiffness_limits.csv'; \
+  png='$out/potential_stiffness_vs_dt.png'" bench/plot_bullet_stiffness.gp
 echo "== done: $out"

@@ -1,0 +1,304 @@
+// SPDX-License-Identifier: MIT
+// How query cost grows with the model: time per coherent distance query (ours and
+// FCL's, same poses), per dynamic penetration-depth update (ours), and preprocessing
+// time, against the triangle count. Series: an icosphere (convex) and CGAL's knot1
+// (non-convex) subdivided 1 -> 4 per level, and CGAL models at their own resolution;
+// every model against a copy of itself, at unit size.
+// Usage: triangle_scaling [--csv FILE] [--max-triangles N] [--steps N]
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "off_mesh.h"
+#include "smartcollision/smartcollision.h"
+
+#if SC_BENCH_HAVE_FCL
+#include <fcl/fcl.h>
+#endif
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using sc::Vec3;
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(std::lround(q * double(v.size() - 1)))];
+}
+
+/// Splits every triangle in four at its edge midpoints (shared between neighbours, so
+/// a closed mesh stays closed); `onto_sphere` pushes new vertices to the unit sphere.
+sc::MeshData subdivide(const sc::MeshData& in, bool onto_sphere) {
+  sc::MeshData out;
+  out.vertices = in.vertices;
+  std::map<std::pair<int, int>, int> midpoint;
+  auto mid = [&](int a, int b) {
+    const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+    auto it = midpoint.find(key);
+    if (it != midpoint.end()) return it->second;
+    Vec3 m = 0.5 * (out.vertices[static_cast<std::size_t>(a)] + out.vertices[static_cast<std::size_t>(b)]);
+    if (onto_sphere) m.normalize();
+    out.vertices.push_back(m);
+    const int index = static_cast<int>(out.vertices.size()) - 1;
+    midpoint.emplace(key, index);
+    return index;
+  };
+  for (const sc::Tri& t : in.triangles) {
+    const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+    out.triangles.emplace_back(t[0], ab, ca);
+    out.triangles.emplace_back(ab, t[1], bc);
+    out.triangles.emplace_back(ca, bc, t[2]);
+    out.triangles.emplace_back(ab, bc, ca);
+  }
+  return out;
+}
+
+sc::MeshData icosahedron() {
+  const double p = (1.0 + std::sqrt(5.0)) / 2.0;
+  sc::MeshData m;
+  const double v[12][3] = {{-1, p, 0}, {1, p, 0},  {-1, -p, 0}, {1, -p, 0}, {0, -1, p},  {0, 1, p},
+                           {0, -1, -p}, {0, 1, -p}, {p, 0, -1},  {p, 0, 1},  {-p, 0, -1}, {-p, 0, 1}};
+  for (const auto& c : v) m.vertices.push_back(Vec3(c[0], c[1], c[2]).normalized());
+  const int f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                        {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (const auto& t : f) m.triangles.emplace_back(t[0], t[1], t[2]);
+  return m;
+}
+
+struct Row {
+  std::string series, model;
+  int triangles = 0;
+  double preprocess_s = 0, fcl_build_s = 0;
+  double ours_distance_us = 0, ours_distance_p99_us = 0, fcl_distance_us = 0, fcl_distance_p99_us = 0;
+  double ours_depth_us = 0, ours_depth_p99_us = 0;
+  double max_rel_diff = 0;  ///< |ours - FCL| / FCL over the distance path
+};
+
+/// One model against a copy of itself.
+class Bench {
+ public:
+  Bench(const sc::MeshData& mesh, Row& row) : mesh_(mesh), row_(row) {
+    const auto t0 = Clock::now();
+    sc::Result<sc::PiecePtr> piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, mesh_);
+    row_.preprocess_s = secondsSince(t0);
+    if (!piece.hasValue()) {
+      std::fprintf(stderr, "triangle_scaling: %s: %s\n", row_.model.c_str(), piece.status().message().c_str());
+      return;
+    }
+    model_ = std::make_shared<const sc::Model>(sc::ModelKind::ClosedPolyhedron,
+                                               std::vector<sc::PiecePtr>{piece.value()});
+    part_t_ = sc::Part{model_.get(), sc::Rigid(), 0};
+    part_o_ = sc::Part{model_.get(), sc::Rigid(), 1};
+#if SC_BENCH_HAVE_FCL
+    const auto t1 = Clock::now();
+    fcl_ = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+    std::vector<fcl::Vector3d> points(mesh_.vertices.begin(), mesh_.vertices.end());
+    std::vector<fcl::Triangle> triangles;
+    for (const sc::Tri& t : mesh_.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+    fcl_->beginModel();
+    fcl_->addSubModel(points, triangles);
+    fcl_->endModel();
+    row_.fcl_build_s = secondsSince(t1);
+#endif
+  }
+  bool ok() const { return model_ != nullptr; }
+
+  sc::DirectedResult query(sc::PairTracker& tracker, const sc::Rigid& pose) const {
+    sc::GroupView target{&part_t_, 1, sc::Placement()};
+    target.placement.setMatrix(pose.rotation, pose.translation);
+    const sc::GroupView opponent{&part_o_, 1, sc::Placement()};
+    sc::DirectedResult out[2];
+    tracker.update(target, opponent, sc::Directions{true, false}, settings_, out);
+    return out[0];
+  }
+
+  /// Offset along `u` (rotation r) where the copies are about `gap` apart.
+  double contactOffset(const sc::Mat3& r, const Vec3& u, double gap) const {
+    double s = 2.0;
+    for (int it = 0; it < 60; ++it) {
+      sc::PairTracker cold;
+      const sc::DirectedResult d = query(cold, {r, s * u});
+      if (d.code != sc::ErrorCode::Ok || d.distance <= 0.0) return s + 0.05;  // overshot: back off
+      if (d.distance < 1.5 * gap) break;
+      s -= d.distance - gap;
+    }
+    return s;
+  }
+
+  /// Coherent near-contact path: the target turns and orbits slowly while a feedback
+  /// on the measured distance keeps the gap between 0.002 and 0.02 (unit-size models).
+  void distancePath(int steps) {
+    const sc::Mat3 r0 = sc::Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized())).toRotationMatrix();
+    Vec3 u = Vec3(1, 0.2, 0.1).normalized();
+    double s = contactOffset(r0, u, 0.01);
+    const Eigen::AngleAxisd orbit(0.002, Vec3(0, 0.3, 1).normalized());
+    sc::PairTracker tracker;
+    std::vector<double> times;
+    std::vector<sc::Rigid> path;
+    for (int k = 0; k < steps; ++k) {
+      const sc::Mat3 r = sc::Quat(Eigen::AngleAxisd(0.002 * k, Vec3(0, 1, 0))).toRotationMatrix() * r0;
+      u = orbit * u;
+      const sc::Rigid pose{r, s * u};
+      const auto t0 = Clock::now();
+      const sc::DirectedResult d = query(tracker, pose);
+      times.push_back(1e6 * secondsSince(t0));
+      path.push_back(pose);
+      distances_.push_back(d.code == sc::ErrorCode::Ok ? d.distance : std::nan(""));
+      const double gap = 0.002 * std::pow(10.0, 0.5 + 0.5 * std::sin(0.02 * k));
+      const double d_now = d.code == sc::ErrorCode::Ok ? d.distance : -1.0;
+      s -= std::clamp(d_now - gap, -0.005, 0.005);
+    }
+    row_.ours_distance_us = quantile(times, 0.5);
+    row_.ours_distance_p99_us = quantile(times, 0.99);
+    fclOnPath(path);
+  }
+
+  /// Dynamic penetration depth along a path 0.005-0.015 deep that slides sideways.
+  void depthPath(int steps) {
+    const sc::Mat3 r0 = sc::Quat(Eigen::AngleAxisd(0.7, Vec3(3, 1, 2).normalized())).toRotationMatrix();
+    const Vec3 u = Vec3(0.2, 1, 0.3).normalized();
+    const Vec3 side = u.cross(Vec3::UnitX()).normalized();
+    const double s = contactOffset(r0, u, 0.002);
+    sc::PairTracker tracker;
+    query(tracker, {r0, (s + 0.05) * u});  // start tracking apart
+    std::vector<double> times;
+    for (int k = 0; k < steps; ++k) {
+      const double depth = 0.01 + 0.005 * std::sin(0.05 * k);
+      const Vec3 t = (s - depth) * u + 0.02 * std::sin(0.01 * k) * side;
+      const auto t0 = Clock::now();
+      query(tracker, {r0, t});
+      if (k > 0) times.push_back(1e6 * secondsSince(t0));
+    }
+    row_.ours_depth_us = quantile(times, 0.5);
+    row_.ours_depth_p99_us = quantile(times, 0.99);
+  }
+
+ private:
+  void fclOnPath([[maybe_unused]] const std::vector<sc::Rigid>& path) {
+#if SC_BENCH_HAVE_FCL
+    std::vector<double> times;
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      fcl::Transform3d ta = fcl::Transform3d::Identity();
+      ta.linear() = path[k].rotation;
+      ta.translation() = path[k].translation;
+      fcl::DistanceRequestd request(true);
+      fcl::DistanceResultd result;
+      const auto t0 = Clock::now();
+      fcl::distance(fcl_.get(), ta, fcl_.get(), fcl::Transform3d::Identity(), request, result);
+      times.push_back(1e6 * secondsSince(t0));
+      if (result.min_distance > 1e-6 && distances_[k] > 0.0)
+        row_.max_rel_diff = std::max(row_.max_rel_diff,
+                                     std::abs(distances_[k] - result.min_distance) / result.min_distance);
+    }
+    row_.fcl_distance_us = quantile(times, 0.5);
+    row_.fcl_distance_p99_us = quantile(times, 0.99);
+#endif
+  }
+
+  sc::MeshData mesh_;
+  Row& row_;
+  sc::ModelPtr model_;
+  sc::Part part_t_, part_o_;
+  sc::SceneSettings settings_;
+  std::vector<double> distances_;
+#if SC_BENCH_HAVE_FCL
+  std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fcl_;
+#endif
+};
+
+struct Options {
+  std::string csv = "triangle_scaling.csv";
+  int max_triangles = 500000;
+  int steps = 400;
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--csv")) o.csv = argv[i + 1];
+    if (!std::strcmp(argv[i], "--max-triangles")) o.max_triangles = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--steps")) o.steps = std::atoi(argv[i + 1]);
+  }
+  return o;
+}
+
+void writeCsv(const std::string& path, const std::vector<Row>& rows) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) {
+    std::fprintf(stderr, "triangle_scaling: cannot write %s\n", path.c_str());
+    std::exit(1);
+  }
+  std::fprintf(f, "series,model,triangles,preprocess_s,fcl_build_s,ours_distance_us,ours_distance_p99_us,"
+                  "fcl_distance_us,fcl_distance_p99_us,ours_depth_us,ours_depth_p99_us,max_rel_diff_vs_fcl\n");
+  for (const Row& r : rows)
+    std::fprintf(f, "%s,%s,%d,%.3f,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2e\n", r.series.c_str(),
+                 r.model.c_str(), r.triangles, r.preprocess_s, r.fcl_build_s, r.ours_distance_us,
+                 r.ours_distance_p99_us, r.fcl_distance_us, r.fcl_distance_p99_us, r.ours_depth_us,
+                 r.ours_depth_p99_us, r.max_rel_diff);
+  std::fclose(f);
+}
+
+/// The models of each series, up to `max_triangles`, in increasing size.
+std::vector<std::pair<Row, sc::MeshData>> models(int max_triangles) {
+  std::vector<std::pair<Row, sc::MeshData>> out;
+  auto add = [&](const std::string& series, const std::string& name, const sc::MeshData& m) {
+    if (m.triangles.empty() || static_cast<int>(m.triangles.size()) > max_triangles) return;
+    Row r;
+    r.series = series;
+    r.model = name;
+    r.triangles = static_cast<int>(m.triangles.size());
+    out.emplace_back(r, sc_bench::unitSize(m));
+  };
+  sc::MeshData sphere = icosahedron();
+  for (int level = 1; level <= 7; ++level) {
+    sphere = subdivide(sphere, true);
+    add("icosphere (convex)", "icosphere-" + std::to_string(level), sphere);
+  }
+  sc::MeshData knot = sc_bench::loadOff("knot1");
+  for (int level = 0; level <= 3 && !knot.triangles.empty(); ++level) {
+    add("knot1 subdivided (non-convex)", "knot1-" + std::to_string(level), knot);
+    knot = subdivide(knot, false);
+  }
+  for (const char* name : {"cow", "lion", "ChineseDragon-10kv", "armadillo", "bunny00"})
+    add("CGAL models", name, sc_bench::loadOff(name));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = parse(argc, argv);
+  std::vector<Row> rows;
+  for (auto& [row, mesh] : models(options.max_triangles)) {
+    Bench bench(mesh, row);
+    if (!bench.ok()) continue;
+    bench.distancePath(options.steps);
+    bench.depthPath(options.steps);
+    std::printf("%-30s %-20s %7d tris  prep %7.2f s  fcl build %6.2f s  distance %8.1f us (FCL %8.1f)  "
+                "depth %8.1f us  rel diff %.1e\n",
+                row.series.c_str(), row.model.c_str(), row.triangles, row.preprocess_s, row.fcl_build_s,
+                row.ours_distance_us, row.fcl_distance_us, row.ours_depth_us, row.max_rel_diff);
+    std::fflush(stdout);
+    rows.push_back(row);
+  }
+  writeCsv(options.csv, rows);
+  return 0;
+}

@@ -27,6 +27,9 @@ run mesh_distance "$build/bench/mesh_distance" --csv="$out/mesh_distance.csv"
 run penetration_depth "$build/bench/penetration_depth" --csv-dir="$out"
 run scene_scaling "$build/bench/scene_scaling" --csv="$out/scene_scaling.csv"
 run bullet_stacking "$build/bench/bullet_stacking" --csv-dir="$out"
+# Up to 400k triangles: knot1's next level (410k) alone would preprocess for minutes.
+run triangle_scaling "$build/bench/triangle_scaling" --csv "$out/triangle_scaling.csv" \
+  --max-triangles 400000
 if [[ "${SC_BENCH_SOAK:-0}" == 1 ]]; then
   echo "== soak"
   "$root/bench/soak.sh" 1000000 potential "$build" > "$out/soak.csv"
@@ -46,4 +49,6 @@ gnuplot -e "csv='$out/bullet_stacking.csv'; png='$out/bullet_drift_jitter.png'" 
   bench/plot_bullet_drift_jitter.gp
 gnuplot -e "csv='$out/potential_stiffness_vs_dt.csv'; limits='$out/potential_stiffness_limits.csv'; \
   png='$out/potential_stiffness_vs_dt.png'" bench/plot_bullet_stiffness.gp
+gnuplot -e "csv='$out/triangle_scaling.csv'; png='$out/triangle_scaling.png'" \
+  bench/plot_triangle_scaling.gp
 echo "== done: $out"

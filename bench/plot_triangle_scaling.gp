@@ -1,0 +1,36 @@
+# SPDX-License-Identifier: MIT
+# Query time and preprocessing time against the triangle count (bench/triangle_scaling).
+# Usage: gnuplot -e "csv='docs/benchmarks/triangle_scaling.csv'; png='docs/benchmarks/triangle_scaling.png'" bench/plot_triangle_scaling.gp
+if (!exists("csv")) csv = 'docs/benchmarks/triangle_scaling.csv'
+if (!exists("png")) png = 'docs/benchmarks/triangle_scaling.png'
+set terminal pngcairo size 1400,560 font ",11"
+set output png
+set datafile separator ","
+set logscale xy
+set grid
+set key top left
+set xlabel "triangles per model (each model against a copy of itself)"
+sphere = "icosphere (convex)"
+knot = "knot1 subdivided (non-convex)"
+cgal = "CGAL models"
+pick(s, col) = (strcol(1) eq s ? column(col) : NaN)
+set multiplot layout 1,2
+set title "Time per query, median (us)"
+set ylabel "us"
+plot csv every ::1 using 3:(pick(sphere, 6)) with linespoints lw 2 pt 7 lc rgb "#1f77b4" title "ours, distance, icosphere", \
+     csv every ::1 using 3:(pick(sphere, 8)) with linespoints lw 2 pt 6 dt 2 lc rgb "#1f77b4" title "FCL, distance, icosphere", \
+     csv every ::1 using 3:(pick(knot, 6)) with linespoints lw 2 pt 5 lc rgb "#d62728" title "ours, distance, knot1", \
+     csv every ::1 using 3:(pick(knot, 8)) with linespoints lw 2 pt 4 dt 2 lc rgb "#d62728" title "FCL, distance, knot1", \
+     csv every ::1 using 3:(pick(cgal, 6)) with points pt 9 ps 1.5 lc rgb "#2ca02c" title "ours, distance, CGAL models", \
+     csv every ::1 using 3:(pick(cgal, 8)) with points pt 8 ps 1.5 lc rgb "#2ca02c" title "FCL, distance, CGAL models", \
+     csv every ::1 using 3:(pick(sphere, 10)) with linespoints lw 1 pt 7 dt 3 lc rgb "#9467bd" title "ours, penetration depth, icosphere", \
+     csv every ::1 using 3:(pick(knot, 10)) with linespoints lw 1 pt 5 dt 3 lc rgb "#ff7f0e" title "ours, penetration depth, knot1"
+set title "Preprocessing (s): our decomposition + hull hierarchy vs FCL's OBBRSS tree"
+set ylabel "s"
+plot csv every ::1 using 3:(pick(sphere, 4)) with linespoints lw 2 pt 7 lc rgb "#1f77b4" title "ours, icosphere", \
+     csv every ::1 using 3:(pick(sphere, 5)) with linespoints lw 2 pt 6 dt 2 lc rgb "#1f77b4" title "FCL, icosphere", \
+     csv every ::1 using 3:(pick(knot, 4)) with linespoints lw 2 pt 5 lc rgb "#d62728" title "ours, knot1", \
+     csv every ::1 using 3:(pick(knot, 5)) with linespoints lw 2 pt 4 dt 2 lc rgb "#d62728" title "FCL, knot1", \
+     csv every ::1 using 3:(pick(cgal, 4)) with points pt 9 ps 1.5 lc rgb "#2ca02c" title "ours, CGAL models", \
+     csv every ::1 using 3:(pick(cgal, 5)) with points pt 8 ps 1.5 lc rgb "#2ca02c" title "FCL, CGAL models"
+unset multiplot

@@ -7,20 +7,15 @@
 // All meshes of the file are merged into one piece (node transforms applied,
 // coincident positions welded). Exit codes: 0 ok, 1 bad input or geometry (or the
 // cache could not be written), 2 usage. Uses the public API only.
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 #include <unistd.h>
 
-#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <string>
 #include <utility>
-#include <vector>
 
+#include "mesh_import.h"
 #include "smartcollision/model.h"
 
 namespace {
@@ -75,51 +70,6 @@ bool parseArguments(int argc, char** argv, Options& options) {
   return true;
 }
 
-/// Collects the triangles of every mesh under `node`, in the file's frame; equal
-/// positions become one vertex (files often split vertices by normal or group).
-class Merger {
- public:
-  explicit Merger(const aiScene& scene) : scene_(scene) {}
-
-  void add(const aiNode& node, const aiMatrix4x4& parent) {
-    const aiMatrix4x4 transform = parent * node.mTransformation;
-    for (unsigned m = 0; m < node.mNumMeshes; ++m) addMesh(*scene_.mMeshes[node.mMeshes[m]], transform);
-    for (unsigned c = 0; c < node.mNumChildren; ++c) add(*node.mChildren[c], transform);
-  }
-  sc::MeshData take() { return std::move(mesh_); }
-  int skipped() const { return skipped_; }
-
- private:
-  void addMesh(const aiMesh& mesh, const aiMatrix4x4& transform) {
-    std::vector<int> index(mesh.mNumVertices, -1);
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices != 3) {  // points and lines
-        ++skipped_;
-        continue;
-      }
-      sc::Tri tri;
-      for (int k = 0; k < 3; ++k) {
-        const unsigned v = face.mIndices[k];
-        if (index[v] < 0) index[v] = vertexOf(transform * mesh.mVertices[v]);
-        tri[k] = index[v];
-      }
-      mesh_.triangles.push_back(tri);
-    }
-  }
-  int vertexOf(const aiVector3D& p) {
-    const std::array<double, 3> key{p.x, p.y, p.z};
-    const auto [it, inserted] = welded_.emplace(key, static_cast<int>(mesh_.vertices.size()));
-    if (inserted) mesh_.vertices.emplace_back(key[0], key[1], key[2]);
-    return it->second;
-  }
-
-  const aiScene& scene_;
-  sc::MeshData mesh_;
-  std::map<std::array<double, 3>, int> welded_;
-  int skipped_ = 0;
-};
-
 /// A progress bar on a terminal, redrawn at most every whole percent.
 class ProgressBar {
  public:
@@ -152,21 +102,12 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
   const auto start = std::chrono::steady_clock::now();
-  Assimp::Importer importer;
-  const aiScene* scene =
-      importer.ReadFile(options.mesh, aiProcess_JoinIdenticalVertices | aiProcess_Triangulate);
-  if (scene == nullptr || scene->mRootNode == nullptr) {
-    std::fprintf(stderr, "sc-preprocess: cannot read '%s': %s\n", options.mesh.c_str(),
-                 importer.GetErrorString());
+  sc::Result<sc::tools::ImportedMesh> imported = sc::tools::importMeshFile(options.mesh);
+  if (!imported.ok()) {
+    std::fprintf(stderr, "sc-preprocess: %s\n", imported.status().message().c_str());
     return kExitBadInput;
   }
-  Merger merger(*scene);
-  merger.add(*scene->mRootNode, aiMatrix4x4());
-  sc::MeshData mesh = merger.take();
-  if (mesh.triangles.empty()) {
-    std::fprintf(stderr, "sc-preprocess: '%s' has no triangles\n", options.mesh.c_str());
-    return kExitBadInput;
-  }
+  const int skipped = imported.value().skipped;
   const double read_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -176,7 +117,7 @@ int main(int argc, char** argv) {
   build.progress = [&bar](double fraction, const char* stage) { bar(fraction, stage); };
   const sc::ModelKind kind =
       options.soup ? sc::ModelKind::TriangleSoup : sc::ModelKind::ClosedPolyhedron;
-  const sc::Result<sc::PiecePtr> piece = sc::buildPiece(kind, std::move(mesh), build);
+  const sc::Result<sc::PiecePtr> piece = sc::buildPiece(kind, std::move(imported.value().mesh), build);
   bar.finish();
   if (!piece.hasValue()) {
     std::fprintf(stderr, "sc-preprocess: %s: %s\n", sc::describe(piece.status().code()),
@@ -187,7 +128,7 @@ int main(int argc, char** argv) {
   std::printf("mesh            %s (%s)\n", options.mesh.c_str(),
               options.soup ? "triangle soup" : "closed polyhedron");
   std::printf("input           %d vertices, %d triangles", s.vertices, s.triangles);
-  if (merger.skipped() > 0) std::printf(" (%d points or lines skipped)", merger.skipped());
+  if (skipped > 0) std::printf(" (%d points or lines skipped)", skipped);
   std::printf("%s\n", s.flipped ? ", given inside out (flipped)" : "");
   std::printf("pieces          1\n");
   std::printf("patches         %d%s\n", s.patches,

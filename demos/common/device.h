@@ -51,8 +51,17 @@ std::unique_ptr<Device> makeMouseDevice();
 /// 3Dconnexion SpaceMouse through libspnav; null with `error` when the library was
 /// not found at build time or spacenavd does not answer (device_spacemouse.cpp).
 std::unique_ptr<Device> makeSpaceMouseDevice(std::string& error);
+/// How a script device plays its file.
+struct ScriptPlayback {
+  /// Forward, backward, forward, ... without end (a soak). The reversal keeps the pose
+  /// continuous, where restarting would jump from the last pose back to the first.
+  bool ping_pong = false;
+  /// Keep every rendered wrench (wrenchLogOf); off, memory stays flat however long it runs.
+  bool log_wrenches = true;
+};
 /// Replays a pose file `t x y z qw qx qy qz` (device_script.cpp) and logs the wrenches.
-std::unique_ptr<Device> makeScriptDevice(const std::string& path, std::string& error);
+std::unique_ptr<Device> makeScriptDevice(const std::string& path, std::string& error,
+                                         const ScriptPlayback& playback = {});
 
 /// The wrenches a script device was given, with the script time of each.
 struct WrenchLog {

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Script device: replays a recorded pose file in real time (clock started at the
-// first poll) and keeps every wrench it is given, for tests and recordings.
+// first poll), once or back and forth, and keeps every wrench it is given (when
+// asked), for tests, recordings and soaks.
 #include <chrono>
+#include <cmath>
 #include <mutex>
 
 #include "device.h"
@@ -13,19 +15,21 @@ namespace {
 
 class ScriptDevice : public Device {
  public:
-  explicit ScriptDevice(bullet::PoseScript script) : script_(std::move(script)) {}
+  ScriptDevice(bullet::PoseScript script, const ScriptPlayback& playback)
+      : script_(std::move(script)), playback_(playback) {}
   const char* name() const override { return "script"; }
 
   bool poll(DevicePose& out) override {
     const auto now = std::chrono::steady_clock::now();
+    // started_ under the lock too: finished() and status() may run on other threads.
+    std::lock_guard<std::mutex> lock(mutex_);
     if (!started_) {
       start_ = now;
       started_ = true;
     }
     const double t = std::chrono::duration<double>(now - start_).count();
-    std::lock_guard<std::mutex> lock(mutex_);
     t_ = t;
-    const bullet::CouplingPose p = script_.sample(t);
+    const bullet::CouplingPose p = script_.sample(scriptTime(t));
     for (int k = 0; k < 3; ++k) out.position[k] = p.position[k];
     out.orientation[0] = p.orientation.w();
     out.orientation[1] = p.orientation.x();
@@ -35,6 +39,7 @@ class ScriptDevice : public Device {
   }
 
   void render(const Wrench& w) override {
+    if (!playback_.log_wrenches) return;
     std::lock_guard<std::mutex> lock(mutex_);
     log_.t.push_back(t_);
     log_.wrench.push_back(w);
@@ -42,7 +47,7 @@ class ScriptDevice : public Device {
 
   bool finished() const override {
     std::lock_guard<std::mutex> lock(mutex_);
-    return started_ && t_ >= script_.duration();
+    return started_ && !playback_.ping_pong && t_ >= script_.duration();
   }
 
   std::string status() const override {
@@ -55,7 +60,16 @@ class ScriptDevice : public Device {
   const WrenchLog& log() const { return log_; }
 
  private:
+  /// Wall time since the first poll -> time in the file.
+  double scriptTime(double t) const {
+    const double d = script_.duration();
+    if (!playback_.ping_pong || d <= 0.0) return t;
+    const double u = std::fmod(t, 2.0 * d);
+    return u <= d ? u : 2.0 * d - u;
+  }
+
   bullet::PoseScript script_;
+  ScriptPlayback playback_;
   std::chrono::steady_clock::time_point start_;
   bool started_ = false;
   double t_ = 0.0;
@@ -65,13 +79,14 @@ class ScriptDevice : public Device {
 
 }  // namespace
 
-std::unique_ptr<Device> makeScriptDevice(const std::string& path, std::string& error) {
+std::unique_ptr<Device> makeScriptDevice(const std::string& path, std::string& error,
+                                         const ScriptPlayback& playback) {
   Result<bullet::PoseScript> script = bullet::PoseScript::load(path);
   if (!script.ok()) {
     error = script.status().message();
     return nullptr;
   }
-  return std::make_unique<ScriptDevice>(std::move(script.value()));
+  return std::make_unique<ScriptDevice>(std::move(script.value()), playback);
 }
 
 const WrenchLog* wrenchLogOf(const Device& device) {

@@ -10,7 +10,11 @@
 // Poses and body states pass through seqlocks (lock-free for the reader and the
 // single writer). Scenes: `peg` (square peg into a block with a square through-hole,
 // 2 mm clearance per side) and `cavity` (the bunny, 75k triangles, into a cup).
+// With --loop a recorded script plays back and forth until --seconds: the soak of
+// bench/soak_haptic.sh, whose NaN, energy and memory figures the JSON reports.
 #include <btBulletDynamicsCommon.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -107,6 +111,7 @@ struct Options : sc::demo::HeadlessOptions {
   std::string device = "mouse";
   double physics_hz = 0.0;  ///< 0: 1000 Hz for peg, 500 Hz for cavity (75k triangles)
   std::string wrench_log;  ///< script device: the rendered wrenches, one line per sample
+  bool loop = false;       ///< script device: play back and forth (a soak with --seconds)
 };
 
 sc::MeshData boxMesh(const Vec3& h) {
@@ -196,11 +201,70 @@ sc::demo::DrawMesh drawMeshOf(const sc::bullet::ScBulletShape& shape) {
   return m;
 }
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t i = std::min(v.size() - 1, std::size_t(p * double(v.size() - 1) + 0.5));
-  return v[i];
+/// Haptic periods in 1 us bins up to 50 ms (longer ones in the last bin), plus the
+/// exact maximum: fixed memory, so that a soak's resident size does not grow with it.
+class PeriodHistogram {
+ public:
+  void add(double seconds) {
+    const double us = std::max(0.0, seconds * 1e6);
+    ++bins_[std::min(bins_.size() - 1, std::size_t(us))];
+    ++count_;
+    max_ = std::max(max_, seconds);
+  }
+  long count() const { return count_; }
+  double max() const { return max_; }
+  /// The p-quantile [s], to the bin's centre (0.5 us).
+  double percentile(double p) const {
+    if (count_ == 0) return 0.0;
+    const long rank = std::min(count_ - 1, long(p * double(count_ - 1) + 0.5));
+    long seen = 0;
+    for (std::size_t i = 0; i < bins_.size(); ++i) {
+      seen += bins_[i];
+      if (seen > rank) return std::min(max_, (double(i) + 0.5) * 1e-6);
+    }
+    return max_;
+  }
+
+ private:
+  std::vector<long> bins_ = std::vector<long>(50000, 0);
+  long count_ = 0;
+  double max_ = 0.0;
+};
+
+/// Resident set size now [kB] (/proc/self/statm), 0 when unavailable.
+long residentKb() {
+  long pages = 0, resident = 0;
+  FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f == nullptr) return 0;
+  if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+  std::fclose(f);
+  return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+long peakResidentKb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+bool finite(const sc::bullet::BodyState& s) {
+  return s.pose.position.allFinite() && s.pose.orientation.coeffs().allFinite() &&
+         s.linear_velocity.allFinite() && s.angular_velocity.allFinite();
+}
+
+bool finite(const sc::bullet::CouplingWrench& w) {
+  return w.force.allFinite() && w.torque.allFinite();
+}
+
+/// Kinetic energy of a body [J] (translation + rotation about its principal axes).
+double kineticEnergy(const btRigidBody& b) {
+  const btVector3 v = b.getLinearVelocity();
+  const btVector3 w = b.getWorldTransform().getBasis().transpose() * b.getAngularVelocity();
+  const btVector3 inv_i = b.getInvInertiaDiagLocal();
+  double e = b.getInvMass() > 0 ? 0.5 * double(v.length2()) / double(b.getInvMass()) : 0.0;
+  for (int k = 0; k < 3; ++k)
+    if (inv_i[k] > 0) e += 0.5 * double(w[k]) * double(w[k]) / double(inv_i[k]);
+  return e;
 }
 
 class Demo {
@@ -335,11 +399,6 @@ class Demo {
   }
 
   std::string json() const {
-    std::vector<double> periods_ms;
-    periods_ms.reserve(periods_.size());
-    for (double p : periods_) periods_ms.push_back(1e3 * p);
-    const double pmax =
-        periods_ms.empty() ? 0.0 : *std::max_element(periods_ms.begin(), periods_ms.end());
     const sc::bullet::CouplingGains& g = coupling_->gains();
     const sc::bullet::BodyState s = sc::bullet::bodyStateOf(*tool_);
     // Nominal bound: one haptic period of device motion, one physics step of the body.
@@ -347,7 +406,7 @@ class Demo {
         sc::bullet::forceJumpBound(g, kMaxDeviceSpeed, 1.0 / kHapticHz, physics_dt_);
     const Vec3 r =
         sc::bullet::rotationVector(s.pose.orientation * grip_rotation_.conjugate());  // mesh frame
-    char buf[3072];
+    char buf[4096];
     std::snprintf(
         buf, sizeof(buf),
         "{\n  \"scene\": \"%s\",\n  \"device\": \"%s\",\n  \"tool_triangles\": %zu,\n  "
@@ -369,12 +428,17 @@ class Demo {
         "\"coupling_work_on_body_J\": %.6g,\n"
         "  \"device_work_J\": %.6g,\n  \"spring_energy_J\": %.6g,\n  \"kinetic_energy_change_J\": "
         "%.6g,\n"
+        "  \"max_kinetic_energy_J\": %.6g,\n  \"non_finite_steps\": %ld,\n  "
+        "\"non_finite_samples\": %ld,\n"
+        "  \"rss_after_1s_kB\": %ld,\n  \"rss_after_60s_kB\": %ld,\n  \"rss_end_kB\": %ld,\n  "
+        "\"peak_rss_kB\": %ld,\n"
         "  \"max_penetration_m\": %.6f,\n  \"final_position\": [%.5f, %.5f, %.5f],\n"
         "  \"final_rotation_vector\": [%.5f, %.5f, %.5f],\n  \"inserted_depth_m\": %.5f,\n  "
         "\"inside\": %s\n}\n",
         options_.scene.c_str(), device_->name(), tool_triangles_, fixed_triangles_, elapsed_,
-        long(periods_.size()) + 1, elapsed_ > 0 ? double(haptic_count_.load()) / elapsed_ : 0.0,
-        percentile(periods_ms, 0.5), percentile(periods_ms, 0.99), pmax, physics_count_.load(),
+        periods_.count() + 1, elapsed_ > 0 ? double(haptic_count_.load()) / elapsed_ : 0.0,
+        1e3 * periods_.percentile(0.5), 1e3 * periods_.percentile(0.99), 1e3 * periods_.max(),
+        physics_count_.load(),
         elapsed_ > 0 ? double(physics_count_.load()) / elapsed_ : 0.0,
         physics_count_.load() ? 1e3 * step_seconds_ / double(physics_count_.load()) : 0.0,
         1e3 * step_max_, g.linear_stiffness, g.linear_damping, g.angular_stiffness,
@@ -382,7 +446,9 @@ class Demo {
         passivity_.required_device_damping, max_jump_, jump_bound, max_jump_ratio_, max_jump_any_,
         unchecked_samples_, max_coupling_force_, monitor_.generated(), monitor_.maxGenerated(),
         monitor_.bodyWork(), monitor_.deviceWork(), monitor_.springEnergy(),
-        monitor_.kineticEnergyChange(), max_depth_.load(), s.pose.position.x(), s.pose.position.y(),
+        monitor_.kineticEnergyChange(), max_kinetic_, non_finite_steps_, non_finite_samples_,
+        rss_after_1s_kb_, rss_after_60s_kb_, residentKb(), std::max(peakResidentKb(), residentKb()),
+        max_depth_.load(), s.pose.position.x(), s.pose.position.y(),
         s.pose.position.z(), r.x(), r.y(), r.z(), insertedDepth(s), inside(s) ? "true" : "false");
     return buf;
   }
@@ -544,7 +610,9 @@ class Demo {
       step_max_ = std::max(step_max_, step);
       max_depth_ = std::max(max_depth_.load(), world_->plugin().stats().max_depth);
       generated_ = monitor_.generated();
-      StateWords state = wordsOf(sc::bullet::bodyStateOf(*tool_));
+      const sc::bullet::BodyState body = sc::bullet::bodyStateOf(*tool_);
+      recordHealth(body, w);
+      StateWords state = wordsOf(body);
       state[13] = double(physics_count_.load() + 1);
       body_state_.write(state);
       ++physics_count_;
@@ -556,6 +624,16 @@ class Demo {
     }
   }
 
+  /// Physics thread, after each step: what a soak watches (NaN, energy, memory).
+  void recordHealth(const sc::bullet::BodyState& body, const sc::bullet::CouplingWrench& w) {
+    if (!finite(body) || !finite(w)) ++non_finite_steps_;
+    max_kinetic_ = std::max(max_kinetic_, kineticEnergy(*tool_));
+    const long step = physics_count_.load() + 1;
+    const long per_second = std::lround(options_.physics_hz);
+    if (step == per_second) rss_after_1s_kb_ = residentKb();
+    if (step == 60 * per_second) rss_after_60s_kb_ = residentKb();
+  }
+
   void hapticLoop() {
     const auto period =
         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kHapticHz));
@@ -564,11 +642,10 @@ class Demo {
     bool first = true;
     Vec3 previous = Vec3::Zero();
     double previous_steps = 0.0;
-    periods_.reserve(1 << 16);
     while (running_) {
       const auto now = Clock::now();
       const double interval = std::chrono::duration<double>(now - last).count();
-      if (!first) periods_.push_back(interval);
+      if (!first) periods_.add(interval);
       last = now;
       sc::demo::DevicePose p;
       if (device_->poll(p)) {
@@ -581,6 +658,7 @@ class Demo {
         StateWords s{};
         body_state_.read(s);
         const sc::bullet::CouplingWrench r = coupling_->reaction(bodyTarget(pose), stateOf(s));
+        if (!finite(stateOf(s)) || !finite(r)) ++non_finite_samples_;
         sc::demo::Wrench out;
         for (int k = 0; k < 3; ++k) {
           out.force[k] = r.force[k];
@@ -655,10 +733,14 @@ class Demo {
 
   // Metrics (each written by one thread, read after the join or as a display value).
   std::atomic<long> haptic_count_{0}, physics_count_{0};
-  std::vector<double> periods_;
+  PeriodHistogram periods_;
   int since_miss_ = 1 << 30;  ///< haptic samples since a loop missed its deadline
   long unchecked_samples_ = 0;
   double max_jump_any_ = 0.0;
+  long non_finite_samples_ = 0;  ///< haptic samples with a non-finite body state or reaction
+  long non_finite_steps_ = 0;    ///< physics steps with a non-finite body state or wrench
+  double max_kinetic_ = 0.0;     ///< the tool's largest kinetic energy [J]
+  long rss_after_1s_kb_ = 0, rss_after_60s_kb_ = 0;  ///< 0 when the run is shorter
   double max_jump_ = 0.0, max_jump_ratio_ = 0.0, max_coupling_force_ = 0.0, step_seconds_ = 0.0,
          step_max_ = 0.0;
   std::atomic<double> max_depth_{0.0}, generated_{0.0}, last_force_{0.0};
@@ -682,11 +764,14 @@ bool parse(int argc, char** argv, Options& o) {
       o.physics_hz = std::atof(v.c_str());
     } else if (a == "--wrench-log" && value(v)) {
       o.wrench_log = v;
+    } else if (a == "--loop") {
+      o.loop = true;
     } else {
       std::fprintf(stderr,
                    "usage: %s [--scene peg|cavity] [--device mouse|spacemouse|script:FILE]\n"
-                   "          [--physics-hz HZ] [--headless [--seconds S] [--png F] [--json F] "
-                   "[--wrench-log F]]\n",
+                   "          [--physics-hz HZ] [--loop] [--headless [--seconds S] [--png F] [--json F] "
+                   "[--wrench-log F]]\n"
+                   "  --loop  play the script back and forth until --seconds (a soak)\n",
                    argv[0]);
       return false;
     }
@@ -701,12 +786,22 @@ bool parse(int argc, char** argv, Options& o) {
 int main(int argc, char** argv) {
   Options options;
   if (!parse(argc, argv, options)) return 2;
-  if (options.headless && options.device.rfind("script:", 0) != 0) {
-    std::fprintf(stderr, "--headless needs --device script:FILE\n");
+  const std::string script_prefix = "script:";
+  const bool script = options.device.rfind(script_prefix, 0) == 0;
+  if ((options.headless || options.loop) && !script) {
+    std::fprintf(stderr, "--headless and --loop need --device script:FILE\n");
     return 2;
   }
   std::string error;
-  std::unique_ptr<sc::demo::Device> device = sc::demo::makeDevice(options.device, error);
+  std::unique_ptr<sc::demo::Device> device;
+  if (script) {
+    sc::demo::ScriptPlayback playback;
+    playback.ping_pong = options.loop;
+    playback.log_wrenches = !options.wrench_log.empty();  // else memory would grow with time
+    device = sc::demo::makeScriptDevice(options.device.substr(script_prefix.size()), error, playback);
+  } else {
+    device = sc::demo::makeDevice(options.device, error);
+  }
   if (!device) {
     std::fprintf(stderr, "device: %s\n", error.c_str());
     return 2;

@@ -10,7 +10,7 @@ packages=(
   build-essential cmake pkg-config ninja-build git
   libeigen3-dev libccd-dev libbullet-dev libbullet-extras-dev
   libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev
-  freeglut3-dev libgl-dev libglu1-mesa-dev libpng-dev
+  freeglut3-dev libgl-dev libglu1-mesa-dev libpng-dev libspnav-dev
   libassimp-dev libqhull-dev
   xvfb xauth
   libcgal-demo

@@ -6,14 +6,22 @@
 #include "device.h"
 
 #ifdef SC_HAVE_SPNAV
-#include <spnav.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <mutex>
 
 #include "smartcollision/types.h"
+
+// Last: Debian's spnav.h pulls in Xlib, whose macros (Success, Status, None, Bool)
+// would break Eigen and our names; none of them is used here.
+#include <spnav.h>
+#undef Success
+#undef Status
+#undef None
+#undef Bool
+#undef True
+#undef False
 #endif
 
 namespace sc::demo {

@@ -10,6 +10,7 @@
 #   2 k_t v T + 0.1 max_force = force_jump_bound_N), while both loops keep their
 #   rates (the samples just after a missed deadline, at most a tenth, are not checked);
 # and that the PNG is not blank.
+include(${CMAKE_CURRENT_LIST_DIR}/../common/check_png.cmake)
 file(REMOVE_RECURSE ${OUT_DIR})
 file(MAKE_DIRECTORY ${OUT_DIR})
 execute_process(COMMAND ${XVFB_RUN} -a ${DEMO} --scene peg --device script:${SCRIPT} --headless
@@ -52,13 +53,6 @@ endif()
 if(failures)
   message(FATAL_ERROR "${failures}\n${json}")
 endif()
-file(SIZE ${OUT_DIR}/haptic_coupling.png size)
-file(READ ${OUT_DIR}/haptic_coupling.png head LIMIT 8 HEX)
-if(NOT head STREQUAL "89504e470d0a1a0a")
-  message(FATAL_ERROR "haptic_coupling.png is not a PNG (${head})")
-endif()
-if(size LESS 4500)
-  message(FATAL_ERROR "haptic_coupling.png looks blank: ${size} bytes")
-endif()
+sc_check_png(${OUT_DIR}/haptic_coupling.png 4500 size)
 message(STATUS "haptic: inside ${inside}, depth ${depth} m, generated ${generated} J, jump ${jump} N "
                "(ratio to its bound ${ratio}, nominal bound ${bound} N), haptic ${rate} Hz, png ${size} bytes")

@@ -3,6 +3,7 @@
 # frame the scene lists exactly the group pairs the activities imply (7), every
 # direction is computed or not as Table 8-1 and the one-way setting say, the
 # inactive object 11 is never in a result, and every status colour was shown.
+include(${CMAKE_CURRENT_LIST_DIR}/../common/check_png.cmake)
 file(REMOVE_RECURSE ${OUT_DIR})
 file(MAKE_DIRECTORY ${OUT_DIR})
 execute_process(COMMAND ${XVFB_RUN} -a ${DEMO} --headless --seconds 6
@@ -38,8 +39,5 @@ endforeach()
 if(failures)
   message(FATAL_ERROR "${failures}\n${json}")
 endif()
-file(SIZE ${OUT_DIR}/multiple_groups.png size)
-if(size LESS 4500)
-  message(FATAL_ERROR "multiple_groups.png looks blank: ${size} bytes")
-endif()
+sc_check_png(${OUT_DIR}/multiple_groups.png 4500 size)
 message(STATUS "multiple_groups: ${pmin} pairs every frame, png ${size} bytes")

@@ -2,6 +2,7 @@
 # Runs the stacking demo headless under xvfb-run for a few seconds, then checks that
 # it wrote its JSON metrics and a PNG that is not blank: a uniform 800x600 frame
 # compresses to about 2.7 KB, the rendered tower to about 7 KB.
+include(${CMAKE_CURRENT_LIST_DIR}/../common/check_png.cmake)
 file(REMOVE_RECURSE ${OUT_DIR})
 file(MAKE_DIRECTORY ${OUT_DIR})
 execute_process(COMMAND ${XVFB_RUN} -a ${DEMO} --headless --seconds 3
@@ -15,12 +16,5 @@ file(READ ${OUT_DIR}/stacking.json json)
 if(NOT json MATCHES "\"top_drift_m\"")
   message(FATAL_ERROR "no metrics in stacking.json:\n${json}")
 endif()
-file(SIZE ${OUT_DIR}/stacking.png size)
-file(READ ${OUT_DIR}/stacking.png head LIMIT 8 HEX)
-if(NOT head STREQUAL "89504e470d0a1a0a")
-  message(FATAL_ERROR "stacking.png is not a PNG (${head})")
-endif()
-if(size LESS 4500)
-  message(FATAL_ERROR "stacking.png looks blank: ${size} bytes")
-endif()
+sc_check_png(${OUT_DIR}/stacking.png 4500 size)
 message(STATUS "stacking.png: ${size} bytes")

@@ -15,6 +15,7 @@ knot = "knot1 subdivided (non-convex)"
 cgal = "CGAL models"
 pick(s, col) = (strcol(1) eq s ? column(col) : NaN)
 set multiplot layout 1,2
+set key bottom right
 set title "Time per query, median (us)"
 set ylabel "us"
 plot csv every ::1 using 3:(pick(sphere, 6)) with linespoints lw 2 pt 7 lc rgb "#1f77b4" title "ours, distance, icosphere", \
@@ -25,6 +26,7 @@ plot csv every ::1 using 3:(pick(sphere, 6)) with linespoints lw 2 pt 7 lc rgb "
      csv every ::1 using 3:(pick(cgal, 8)) with points pt 8 ps 1.5 lc rgb "#2ca02c" title "FCL, distance, CGAL models", \
      csv every ::1 using 3:(pick(sphere, 10)) with linespoints lw 1 pt 7 dt 3 lc rgb "#9467bd" title "ours, penetration depth, icosphere", \
      csv every ::1 using 3:(pick(knot, 10)) with linespoints lw 1 pt 5 dt 3 lc rgb "#ff7f0e" title "ours, penetration depth, knot1"
+set key top left
 set title "Preprocessing (s): our decomposition + hull hierarchy vs FCL's OBBRSS tree"
 set ylabel "s"
 plot csv every ::1 using 3:(pick(sphere, 4)) with linespoints lw 2 pt 7 lc rgb "#1f77b4" title "ours, icosphere", \

@@ -27,6 +27,9 @@ run mesh_distance "$build/bench/mesh_distance" --csv="$out/mesh_distance.csv"
 run penetration_depth "$build/bench/penetration_depth" --csv-dir="$out"
 run scene_scaling "$build/bench/scene_scaling" --csv="$out/scene_scaling.csv"
 run bullet_stacking "$build/bench/bullet_stacking" --csv-dir="$out"
+# The stability matrix writes its CSV next to the others and its page docs/stability.md.
+run stability_matrix "$build/bench/stability_matrix" --csv="$out/stability.csv" \
+  --md="$root/docs/stability.md"
 # Up to 400k triangles: knot1's next level (410k) alone would preprocess for minutes.
 run triangle_scaling "$build/bench/triangle_scaling" --csv "$out/triangle_scaling.csv" \
   --max-triangles 400000

@@ -128,6 +128,12 @@ double forceJumpBound(const CouplingGains& gains, double max_speed, double devic
          0.1 * gains.max_force;
 }
 
+double impactJumpBound(const CouplingGains& gains, double max_speed, double device_interval,
+                       double body_interval) {
+  return gains.linear_stiffness * max_speed * (device_interval + body_interval) +
+         gains.linear_damping * max_speed;
+}
+
 Vec3 rotationVector(const Quat& q_in) {
   Quat q = q_in.normalized();
   if (q.w() < 0.0) q.coeffs() = -q.coeffs();  // shortest way

@@ -4,6 +4,7 @@
 // class plus a line in makeDevice().
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,9 @@ struct ScriptPlayback {
   bool ping_pong = false;
   /// Keep every rendered wrench (wrenchLogOf); off, memory stays flat however long it runs.
   bool log_wrenches = true;
+  /// Seconds since the start of playback; empty: the wall clock from the first poll.
+  /// A lock-step run (haptic_coupling --lockstep) drives the script on simulated time.
+  std::function<double()> clock;
 };
 /// Replays a pose file `t x y z qw qx qy qz` (device_script.cpp) and logs the wrenches.
 std::unique_ptr<Device> makeScriptDevice(const std::string& path, std::string& error,

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Script device: replays a recorded pose file in real time (clock started at the
-// first poll), once or back and forth, and keeps every wrench it is given (when
+// first poll) or on a given clock, once or back and forth, and keeps every wrench it is given (when
 // asked), for tests, recordings and soaks.
 #include <chrono>
 #include <cmath>
@@ -27,7 +27,8 @@ class ScriptDevice : public Device {
       start_ = now;
       started_ = true;
     }
-    const double t = std::chrono::duration<double>(now - start_).count();
+    const double t =
+        playback_.clock ? playback_.clock() : std::chrono::duration<double>(now - start_).count();
     t_ = t;
     const bullet::CouplingPose p = script_.sample(scriptTime(t));
     for (int k = 0; k < 3; ++k) out.position[k] = p.position[k];

@@ -28,9 +28,9 @@
 #include <thread>
 #include <vector>
 
+#include "../common/cli.h"
 #include "../common/device.h"
 #include "../common/off_mesh.h"
-#include "../common/cli.h"
 #include "../common/viewer.h"
 #include "smartcollision/bullet/bullet.h"
 
@@ -75,7 +75,7 @@ class SeqLock {
 };
 
 using PoseWords = std::array<double, 7>;    // x y z qw qx qy qz
-using StateWords = std::array<double, 14>;  // pose, v, w, physics step count
+using StateWords = std::array<double, 15>;  // pose, v, w, physics step count, in contact
 
 PoseWords wordsOf(const sc::bullet::CouplingPose& p) {
   return {p.position.x(),    p.position.y(),    p.position.z(),   p.orientation.w(),
@@ -110,8 +110,9 @@ struct Options : sc::demo::HeadlessOptions {
   std::string scene = "peg";
   std::string device = "mouse";
   double physics_hz = 0.0;  ///< 0: 1000 Hz for peg, 500 Hz for cavity (75k triangles)
-  std::string wrench_log;  ///< script device: the rendered wrenches, one line per sample
-  bool loop = false;       ///< script device: play back and forth (a soak with --seconds)
+  std::string wrench_log;   ///< script device: the rendered wrenches, one line per sample
+  bool loop = false;        ///< script device: play back and forth (a soak with --seconds)
+  bool lockstep = false;    ///< headless: haptic and physics in turn on simulated time
 };
 
 sc::MeshData boxMesh(const Vec3& h) {
@@ -311,11 +312,30 @@ class Demo {
     haptic_ = std::thread([this] { hapticLoop(); });
   }
 
+  /// --lockstep: the haptic samples and physics steps of `seconds` of simulated time in
+  /// this thread, on a simulated clock (`clock`, which drives the script device), so
+  /// the outcome does not depend on how loaded the machine is. The threaded run is
+  /// what the rates and periods of docs/benchmarks.md measure.
+  void runLockstep(double seconds, std::atomic<double>& clock) {
+    lockstep_ = true;
+    const auto wall = Clock::now();
+    const long samples = std::lround(seconds * kHapticHz);
+    for (long k = 0; k < samples; ++k) {
+      clock = double(k) / kHapticHz;
+      hapticSample(k == 0 ? 0.0 : 1.0 / kHapticHz);
+      const double until = double(k + 1) / kHapticHz;  // physics catches up to the next sample
+      while (double(physics_count_.load() + 1) * physics_dt_ <= until + 1e-9) physicsStep();
+    }
+    elapsed_ = double(samples) / kHapticHz;
+    wall_seconds_ = std::chrono::duration<double>(Clock::now() - wall).count();
+  }
+
   void stop() {
     running_ = false;
     if (haptic_.joinable()) haptic_.join();
     if (physics_.joinable()) physics_.join();
     elapsed_ = std::chrono::duration<double>(Clock::now() - start_time_).count();
+    wall_seconds_ = elapsed_;
   }
 
   sc::demo::Device& device() { return *device_; }
@@ -404,12 +424,15 @@ class Demo {
     // Nominal bound: one haptic period of device motion, one physics step of the body.
     const double jump_bound =
         sc::bullet::forceJumpBound(g, kMaxDeviceSpeed, 1.0 / kHapticHz, physics_dt_);
+    const double impact_bound =
+        sc::bullet::impactJumpBound(g, kMaxDeviceSpeed, 1.0 / kHapticHz, physics_dt_);
     const Vec3 r =
         sc::bullet::rotationVector(s.pose.orientation * grip_rotation_.conjugate());  // mesh frame
     char buf[4096];
     std::snprintf(
         buf, sizeof(buf),
-        "{\n  \"scene\": \"%s\",\n  \"device\": \"%s\",\n  \"tool_triangles\": %zu,\n  "
+        "{\n  \"scene\": \"%s\",\n  \"device\": \"%s\",\n  \"clock\": \"%s\",\n  "
+        "\"wall_seconds\": %.3f,\n  \"tool_triangles\": %zu,\n  "
         "\"fixed_triangles\": %zu,\n"
         "  \"seconds\": %.3f,\n  \"haptic_samples\": %ld,\n  \"haptic_rate_hz\": %.1f,\n"
         "  \"haptic_period_p50_ms\": %.4f,\n  \"haptic_period_p99_ms\": %.4f,\n  "
@@ -421,7 +444,9 @@ class Demo {
         "\"max_torque\": %.4f},\n"
         "  \"passivity_body_margin\": %.2f,\n  \"required_device_damping\": %.3f,\n"
         "  \"max_force_jump_N\": %.4f,\n  \"force_jump_bound_N\": %.4f,\n  "
-        "\"max_force_jump_ratio\": %.4f,\n  \"max_force_jump_any_N\": %.4f,\n  "
+        "\"max_force_jump_ratio\": %.4f,\n  \"impacts\": %ld,\n  \"max_impact_jump_N\": %.4f,\n  "
+        "\"impact_jump_bound_N\": %.4f,\n  \"max_impact_jump_ratio\": %.4f,\n  "
+        "\"max_force_jump_any_N\": %.4f,\n  "
         "\"samples_after_missed_deadline\": %ld,\n  "
         "\"max_coupling_force_N\": %.4f,\n"
         "  \"energy_generated_J\": %.6g,\n  \"energy_generated_max_J\": %.6g,\n  "
@@ -435,21 +460,22 @@ class Demo {
         "  \"max_penetration_m\": %.6f,\n  \"final_position\": [%.5f, %.5f, %.5f],\n"
         "  \"final_rotation_vector\": [%.5f, %.5f, %.5f],\n  \"inserted_depth_m\": %.5f,\n  "
         "\"inside\": %s\n}\n",
-        options_.scene.c_str(), device_->name(), tool_triangles_, fixed_triangles_, elapsed_,
-        periods_.count() + 1, elapsed_ > 0 ? double(haptic_count_.load()) / elapsed_ : 0.0,
+        options_.scene.c_str(), device_->name(), lockstep_ ? "lockstep" : "realtime", wall_seconds_,
+        tool_triangles_, fixed_triangles_, elapsed_, periods_.count() + 1,
+        elapsed_ > 0 ? double(haptic_count_.load()) / elapsed_ : 0.0,
         1e3 * periods_.percentile(0.5), 1e3 * periods_.percentile(0.99), 1e3 * periods_.max(),
-        physics_count_.load(),
-        elapsed_ > 0 ? double(physics_count_.load()) / elapsed_ : 0.0,
+        physics_count_.load(), elapsed_ > 0 ? double(physics_count_.load()) / elapsed_ : 0.0,
         physics_count_.load() ? 1e3 * step_seconds_ / double(physics_count_.load()) : 0.0,
         1e3 * step_max_, g.linear_stiffness, g.linear_damping, g.angular_stiffness,
         g.angular_damping, g.max_force, g.max_torque, passivity_.body_margin,
-        passivity_.required_device_damping, max_jump_, jump_bound, max_jump_ratio_, max_jump_any_,
-        unchecked_samples_, max_coupling_force_, monitor_.generated(), monitor_.maxGenerated(),
-        monitor_.bodyWork(), monitor_.deviceWork(), monitor_.springEnergy(),
-        monitor_.kineticEnergyChange(), max_kinetic_, non_finite_steps_, non_finite_samples_,
-        rss_after_1s_kb_, rss_after_60s_kb_, residentKb(), std::max(peakResidentKb(), residentKb()),
-        max_depth_.load(), s.pose.position.x(), s.pose.position.y(),
-        s.pose.position.z(), r.x(), r.y(), r.z(), insertedDepth(s), inside(s) ? "true" : "false");
+        passivity_.required_device_damping, max_jump_, jump_bound, max_jump_ratio_, impacts_,
+        max_impact_jump_, impact_bound, max_impact_ratio_, max_jump_any_, unchecked_samples_,
+        max_coupling_force_, monitor_.generated(), monitor_.maxGenerated(), monitor_.bodyWork(),
+        monitor_.deviceWork(), monitor_.springEnergy(), monitor_.kineticEnergyChange(),
+        max_kinetic_, non_finite_steps_, non_finite_samples_, rss_after_1s_kb_, rss_after_60s_kb_,
+        residentKb(), std::max(peakResidentKb(), residentKb()), max_depth_.load(),
+        s.pose.position.x(), s.pose.position.y(), s.pose.position.z(), r.x(), r.y(), r.z(),
+        insertedDepth(s), inside(s) ? "true" : "false");
     return buf;
   }
 
@@ -597,31 +623,38 @@ class Demo {
         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(physics_dt_));
     while (running_) {
       next += period;
-      PoseWords d{};
-      device_pose_.read(d);
-      const sc::bullet::CouplingPose device = bodyTarget(poseOf(d.data()));
-      const auto t0 = Clock::now();
-      const sc::bullet::CouplingWrench w = coupling_->apply(device, *tool_);
-      monitor_.beforeStep(*coupling_, device, *tool_, w);
-      world_->stepSimulation(btScalar(physics_dt_), 1, btScalar(physics_dt_));
-      monitor_.afterStep(*tool_);
-      const double step = std::chrono::duration<double>(Clock::now() - t0).count();
-      step_seconds_ += step;
-      step_max_ = std::max(step_max_, step);
-      max_depth_ = std::max(max_depth_.load(), world_->plugin().stats().max_depth);
-      generated_ = monitor_.generated();
-      const sc::bullet::BodyState body = sc::bullet::bodyStateOf(*tool_);
-      recordHealth(body, w);
-      StateWords state = wordsOf(body);
-      state[13] = double(physics_count_.load() + 1);
-      body_state_.write(state);
-      ++physics_count_;
+      physicsStep();
       const auto now = Clock::now();
       if (next > now)
         std::this_thread::sleep_until(next);
       else if (now - next > 20 * period)
         next = now;  // far behind: do not try to catch up in a burst
     }
+  }
+
+  /// One physics step: the coupling with the latest device pose, Bullet + SmartCollision,
+  /// the body state handed to the haptic loop.
+  void physicsStep() {
+    PoseWords d{};
+    device_pose_.read(d);
+    const sc::bullet::CouplingPose device = bodyTarget(poseOf(d.data()));
+    const auto t0 = Clock::now();
+    const sc::bullet::CouplingWrench w = coupling_->apply(device, *tool_);
+    monitor_.beforeStep(*coupling_, device, *tool_, w);
+    world_->stepSimulation(btScalar(physics_dt_), 1, btScalar(physics_dt_));
+    monitor_.afterStep(*tool_);
+    const double step = std::chrono::duration<double>(Clock::now() - t0).count();
+    step_seconds_ += step;
+    step_max_ = std::max(step_max_, step);
+    max_depth_ = std::max(max_depth_.load(), world_->plugin().stats().max_depth);
+    generated_ = monitor_.generated();
+    const sc::bullet::BodyState body = sc::bullet::bodyStateOf(*tool_);
+    recordHealth(body, w);
+    StateWords state = wordsOf(body);
+    state[13] = double(physics_count_.load() + 1);
+    state[14] = world_->plugin().stats().penetrating > 0 ? 1.0 : 0.0;
+    body_state_.write(state);
+    ++physics_count_;
   }
 
   /// Physics thread, after each step: what a soak watches (NaN, energy, memory).
@@ -640,61 +673,81 @@ class Demo {
     auto next = Clock::now();
     Clock::time_point last;
     bool first = true;
-    Vec3 previous = Vec3::Zero();
-    double previous_steps = 0.0;
     while (running_) {
       const auto now = Clock::now();
-      const double interval = std::chrono::duration<double>(now - last).count();
-      if (!first) periods_.add(interval);
+      hapticSample(first ? 0.0 : std::chrono::duration<double>(now - last).count());
       last = now;
-      sc::demo::DevicePose p;
-      if (device_->poll(p)) {
-        sc::bullet::CouplingPose pose;
-        pose.position = Vec3(p.position[0], p.position[1], p.position[2]);
-        pose.orientation =
-            Quat(p.orientation[0], p.orientation[1], p.orientation[2], p.orientation[3])
-                .normalized();
-        device_pose_.write(wordsOf(pose));
-        StateWords s{};
-        body_state_.read(s);
-        const sc::bullet::CouplingWrench r = coupling_->reaction(bodyTarget(pose), stateOf(s));
-        if (!finite(stateOf(s)) || !finite(r)) ++non_finite_samples_;
-        sc::demo::Wrench out;
-        for (int k = 0; k < 3; ++k) {
-          out.force[k] = r.force[k];
-          out.torque[k] = r.torque[k];
-        }
-        device_->render(out);
-        if (!first) {
-          // The bound for this pair of samples: the device moved for `interval`, the
-          // body for the physics steps taken in between. It assumes both loops keep
-          // their rates: after a missed deadline the body catches up faster than the
-          // bound's speed, so pairs within kSettleSamples of one are only counted.
-          const double body_interval = (s[13] - previous_steps) * physics_dt_;
-          if (interval > 1.5 / kHapticHz || body_interval > 2.5 * physics_dt_) since_miss_ = 0;
-          const double jump = (r.force - previous).norm();
-          max_jump_any_ = std::max(max_jump_any_, jump);
-          if (since_miss_ < kSettleSamples) {
-            ++since_miss_;
-            ++unchecked_samples_;
-          } else {
-            const double bound = sc::bullet::forceJumpBound(coupling_->gains(), kMaxDeviceSpeed,
-                                                            interval, body_interval);
-            max_jump_ = std::max(max_jump_, jump);
-            max_jump_ratio_ = std::max(max_jump_ratio_, jump / bound);
-          }
-        }
-        previous_steps = s[13];
-        max_coupling_force_ = std::max(max_coupling_force_, r.force.norm());
-        last_force_ = r.force.norm();
-        previous = r.force;
-      }
       first = false;
-      ++haptic_count_;
       next += period;
       std::this_thread::sleep_until(next);
       if (Clock::now() - next > 20 * period) next = Clock::now();
     }
+  }
+
+  /// One haptic sample, `interval` seconds after the previous one (0 for the first):
+  /// poll the device, the reaction from the latest body state to the device, and the
+  /// force-continuity check.
+  void hapticSample(double interval) {
+    const bool first = haptic_count_.load() == 0;
+    if (!first) periods_.add(interval);
+    sc::demo::DevicePose p;
+    if (device_->poll(p)) {
+      sc::bullet::CouplingPose pose;
+      pose.position = Vec3(p.position[0], p.position[1], p.position[2]);
+      pose.orientation =
+          Quat(p.orientation[0], p.orientation[1], p.orientation[2], p.orientation[3]).normalized();
+      device_pose_.write(wordsOf(pose));
+      StateWords s{};
+      body_state_.read(s);
+      const sc::bullet::CouplingWrench r = coupling_->reaction(bodyTarget(pose), stateOf(s));
+      if (!finite(stateOf(s)) || !finite(r)) ++non_finite_samples_;
+      sc::demo::Wrench out;
+      for (int k = 0; k < 3; ++k) {
+        out.force[k] = r.force[k];
+        out.torque[k] = r.torque[k];
+      }
+      device_->render(out);
+      const bool contact = s[14] > 0.5;
+      if (contact && !previous_contact_) {
+        since_impact_ = 0;
+        ++impacts_;
+      }
+      previous_contact_ = contact;
+      if (!first) checkForceJump(r.force, interval, (s[13] - previous_steps_) * physics_dt_);
+      previous_steps_ = s[13];
+      max_coupling_force_ = std::max(max_coupling_force_, r.force.norm());
+      last_force_ = r.force.norm();
+      previous_force_ = r.force;
+    }
+    ++haptic_count_;
+  }
+
+  /// The bound for this pair of samples: the device moved for `interval`, the body for
+  /// `body_interval` (the physics steps taken in between); within kSettleSamples of a
+  /// contact's onset the impact bound (the body stops at once). It assumes both loops
+  /// keep their rates: after a missed deadline the body catches up faster than the
+  /// bound's speed, so pairs within kSettleSamples of one are only counted.
+  void checkForceJump(const Vec3& force, double interval, double body_interval) {
+    if (interval > 1.5 / kHapticHz || body_interval > 2.5 * physics_dt_) since_miss_ = 0;
+    const double jump = (force - previous_force_).norm();
+    max_jump_any_ = std::max(max_jump_any_, jump);
+    const bool impact = since_impact_ < kSettleSamples;
+    if (impact) ++since_impact_;
+    if (since_miss_ < kSettleSamples) {
+      ++since_miss_;
+      ++unchecked_samples_;
+      return;
+    }
+    const sc::bullet::CouplingGains& g = coupling_->gains();
+    if (impact) {
+      const double bound = sc::bullet::impactJumpBound(g, kMaxDeviceSpeed, interval, body_interval);
+      max_impact_jump_ = std::max(max_impact_jump_, jump);
+      max_impact_ratio_ = std::max(max_impact_ratio_, jump / bound);
+      return;
+    }
+    const double bound = sc::bullet::forceJumpBound(g, kMaxDeviceSpeed, interval, body_interval);
+    max_jump_ = std::max(max_jump_, jump);
+    max_jump_ratio_ = std::max(max_jump_ratio_, jump / bound);
   }
 
   Options options_;
@@ -725,16 +778,24 @@ class Demo {
   sc::bullet::CouplingEnergyMonitor monitor_;  ///< physics thread
 
   SeqLock<7> device_pose_;  ///< haptic -> physics, graphics
-  SeqLock<14> body_state_;  ///< physics -> haptic, graphics
+  SeqLock<15> body_state_;  ///< physics -> haptic, graphics
   std::atomic<bool> running_{false};
   std::thread physics_, haptic_;
   Clock::time_point start_time_;
-  double elapsed_ = 0.0;
+  double elapsed_ = 0.0;       ///< seconds of the run: simulated with --lockstep
+  double wall_seconds_ = 0.0;  ///< wall time of the run
+  bool lockstep_ = false;
 
   // Metrics (each written by one thread, read after the join or as a display value).
   std::atomic<long> haptic_count_{0}, physics_count_{0};
   PeriodHistogram periods_;
-  int since_miss_ = 1 << 30;  ///< haptic samples since a loop missed its deadline
+  int since_miss_ = 1 << 30;            ///< haptic samples since a loop missed its deadline
+  Vec3 previous_force_ = Vec3::Zero();  ///< haptic thread: the last sample's reaction
+  double previous_steps_ = 0.0;         ///< haptic thread: physics steps at the last sample
+  bool previous_contact_ = false;       ///< haptic thread: the tool touched at the last sample
+  int since_impact_ = 1 << 30;          ///< haptic samples since a contact's onset
+  long impacts_ = 0;                    ///< contact onsets seen by the haptic loop
+  double max_impact_jump_ = 0.0, max_impact_ratio_ = 0.0;
   long unchecked_samples_ = 0;
   double max_jump_any_ = 0.0;
   long non_finite_samples_ = 0;  ///< haptic samples with a non-finite body state or reaction
@@ -766,12 +827,16 @@ bool parse(int argc, char** argv, Options& o) {
       o.wrench_log = v;
     } else if (a == "--loop") {
       o.loop = true;
+    } else if (a == "--lockstep") {
+      o.lockstep = true;
     } else {
       std::fprintf(stderr,
                    "usage: %s [--scene peg|cavity] [--device mouse|spacemouse|script:FILE]\n"
-                   "          [--physics-hz HZ] [--loop] [--headless [--seconds S] [--png F] [--json F] "
-                   "[--wrench-log F]]\n"
-                   "  --loop  play the script back and forth until --seconds (a soak)\n",
+                   "          [--physics-hz HZ] [--loop] [--headless [--lockstep] [--seconds S] "
+                   "[--png F] [--json F] [--wrench-log F]]\n"
+                   "  --loop      play the script back and forth until --seconds (a soak)\n"
+                   "  --lockstep  haptic samples and physics steps in turn on simulated time,\n"
+                   "              one thread: the same outcome on any machine load\n",
                    argv[0]);
       return false;
     }
@@ -792,13 +857,20 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "--headless and --loop need --device script:FILE\n");
     return 2;
   }
+  if (options.lockstep && !options.headless) {
+    std::fprintf(stderr, "--lockstep needs --headless\n");
+    return 2;
+  }
+  std::atomic<double> sim_clock{0.0};  // --lockstep: the script's clock
   std::string error;
   std::unique_ptr<sc::demo::Device> device;
   if (script) {
     sc::demo::ScriptPlayback playback;
     playback.ping_pong = options.loop;
     playback.log_wrenches = !options.wrench_log.empty();  // else memory would grow with time
-    device = sc::demo::makeScriptDevice(options.device.substr(script_prefix.size()), error, playback);
+    if (options.lockstep) playback.clock = [&sim_clock] { return sim_clock.load(); };
+    device =
+        sc::demo::makeScriptDevice(options.device.substr(script_prefix.size()), error, playback);
   } else {
     device = sc::demo::makeDevice(options.device, error);
   }
@@ -812,9 +884,13 @@ int main(int argc, char** argv) {
   cb.overlay = [&] { return demo.overlay(); };
   if (options.headless) {
     const double seconds = options.seconds > 0 ? options.seconds : demo.defaultSeconds();
-    demo.start();
-    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-    demo.stop();
+    if (options.lockstep) {
+      demo.runLockstep(seconds, sim_clock);
+    } else {
+      demo.start();
+      std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+      demo.stop();
+    }
     const std::string metrics = demo.json();
     if (!sc::demo::emitMetrics(metrics, options.json)) return 1;
     const sc::demo::WrenchLog* log = sc::demo::wrenchLogOf(demo.device());

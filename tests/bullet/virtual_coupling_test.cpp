@@ -210,6 +210,40 @@ TEST(VirtualCouplingTest, ForceIsContinuousWhileSliding) {
             kHalf - 0.002);  // still above the floor
 }
 
+TEST(VirtualCouplingTest, ImpactJumpStaysWithinItsBound) {
+  // The device lowers the box 20 mm at 0.1 m/s onto the floor and 0.5 mm into it.
+  // At the impact the contact model stops the box within a step or two, so the
+  // damper's force jumps by up to b_t v (impactJumpBound); before and after that
+  // window the sliding bound holds.
+  Rig rig(0.0, true);
+  const double top = kHalf + 0.02;
+  rig.body->getWorldTransform().setOrigin(btVector3(0, btScalar(top), 0));
+  const VirtualCoupling coupling(rig.gains());
+  const bullet::CouplingGains& g = coupling.gains();
+  CouplingPose device;
+  Vec3 previous = Vec3::Zero();
+  double impact_jump = 0.0, other_jump = 0.0;
+  int since_contact = -1;  // samples since the contact's onset; -1 before it
+  for (int i = 0; i < 600; ++i) {
+    device.position = Vec3(0, top - std::min(0.1 * i / kHz, 0.0205), 0);
+    rig.step(coupling, device);
+    if (since_contact < 0 && rig.world.plugin->stats().penetrating > 0) since_contact = 0;
+    const Vec3 f = coupling.reaction(device, bullet::bodyStateOf(*rig.body)).force;
+    const bool impact = since_contact >= 0 && since_contact < 20;
+    double& worst = impact ? impact_jump : other_jump;
+    if (i > 0) worst = std::max(worst, (f - previous).norm());
+    if (since_contact >= 0) ++since_contact;
+    previous = f;
+  }
+  RecordProperty("impact_jump_N", std::to_string(impact_jump));
+  RecordProperty("other_jump_N", std::to_string(other_jump));
+  ASSERT_GE(since_contact, 0) << "the box never touched the floor";
+  const double sliding = bullet::forceJumpBound(g, 0.1, 1.0 / kHz, 1.0 / kHz);
+  EXPECT_GT(impact_jump, 0.5 * g.linear_damping * 0.1) << "the impact should show b_t v";
+  EXPECT_LT(impact_jump, bullet::impactJumpBound(g, 0.1, 1.0 / kHz, 1.0 / kHz));
+  EXPECT_LT(other_jump, sliding);
+}
+
 TEST(VirtualCouplingTest, PoseScriptInterpolates) {
   const Result<PoseScript> s = PoseScript::parse(
       "# t x y z qw qx qy qz\n"

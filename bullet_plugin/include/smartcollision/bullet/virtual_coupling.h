@@ -104,14 +104,20 @@ PassivityReport checkPassivity(const CouplingGains& gains, const CouplingDesign&
 /// `body_interval` of simulated time (its physics steps times T_p), device and body
 /// moving at most `max_speed`:
 ///   k_t v (device_interval + body_interval)  spring: |d(x_dev - x_body)|
-/// + 0.1 max_force                            damper b_t dv: the body's velocity change,
-///                                            which the contact model spreads over its
-///                                            contact period (10 steps): at most a tenth
-///                                            of the limit for approach speeds up to
-///                                            0.1 max_force / b_t.
+/// + 0.1 max_force                            damper b_t dv: the body's velocity change
+///                                            while it slides or moves freely (smooth:
+///                                            at most a tenth of the limit).
 /// At 1 kHz in lockstep (both intervals 1 ms) and v = 0.1 m/s: 2 k_t v T + 0.1 max_force.
+/// It does not hold at an impact: see impactJumpBound.
 double forceJumpBound(const CouplingGains& gains, double max_speed, double device_interval,
                       double body_interval);
+
+/// The same bound for the samples that follow a contact's onset: the contact model
+/// stops an approach within a step or two (restitution 0, critically damped), so the
+/// damper's term is the whole b_t v instead of 0.1 max_force:
+///   k_t v (device_interval + body_interval) + b_t v.
+double impactJumpBound(const CouplingGains& gains, double max_speed, double device_interval,
+                       double body_interval);
 
 /// Axis times angle of q (shortest way, angle in [0, pi]).
 Vec3 rotationVector(const Quat& q);

@@ -52,7 +52,8 @@ int realFaceAt(const ConvexPolytope& poly, const Rigid& frame_from_poly, const V
   const int n = static_cast<int>(poly.vertices.size());
   for (int i = 0; i < count && static_cast<int>(poly.vertex_face_start.size()) == n + 1; ++i) {
     if (simplex[i] < 0 || simplex[i] >= n) continue;
-    for (int k = poly.vertex_face_start[simplex[i]]; k < poly.vertex_face_start[simplex[i] + 1]; ++k)
+    for (int k = poly.vertex_face_start[simplex[i]]; k < poly.vertex_face_start[simplex[i] + 1];
+         ++k)
       if (realFaceHolds(poly, poly.vertex_faces[k], local, tolerance)) return poly.vertex_faces[k];
   }
   for (int f = 0; f < static_cast<int>(poly.faces.size()); ++f)
@@ -250,7 +251,7 @@ double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance) {
 }
 
 LeafContact GroupPairQuery::evaluate(const NodePair& p, const Rigid& o_from_piece,
-                                     double max_distance, bool& beyond) {
+                                     double max_distance, bool& beyond, SimplexCache* cache) {
   ++counters_.leaf_gjk;
   const Slot& ts = t_slots_[p.t_slot];
   const Slot& os = o_slots_[p.o_slot];
@@ -260,7 +261,7 @@ LeafContact GroupPairQuery::evaluate(const NodePair& p, const Rigid& o_from_piec
   settings.max_distance = max_distance;
   const GjkResult r =
       gjkDistance(ts.data->patches[tn.polytope], o_from_piece, os.data->patches[on.polytope],
-                  os.group_from_piece, settings, cacheOf(p));
+                  os.group_from_piece, settings, cache != nullptr ? *cache : cacheOf(p));
   LeafContact c;
   c.t_leaf = ts.first_leaf + tn.polytope;
   c.o_leaf = os.first_leaf + on.polytope;
@@ -354,7 +355,8 @@ LeafContact GroupPairQuery::exactLeafDistance(const NodePair& p, double bound, b
   const ConvexPolytope& po = polytopeOf(os, p.o_node);
   const int t_face = realFaceAt(pt, o_from_piece, c.point_t, c.simplex_t, c.simplex_count);
   const int o_face =
-      t_face < 0 ? -1 : realFaceAt(po, os.group_from_piece, c.point_o, c.simplex_o, c.simplex_count);
+      t_face < 0 ? -1
+                 : realFaceAt(po, os.group_from_piece, c.point_o, c.simplex_o, c.simplex_count);
   if (o_face >= 0) {
     seedWithFaces(pt.faces[t_face], po.faces[o_face], c);
     return c;
@@ -538,17 +540,25 @@ void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, doubl
     near_pose_ = o_from_t;
     near_reach_ = threshold + margin;
     out.clear();
-    for (const LeafContact& c : near_pairs_)  // already sorted
+    near_caches_.clear();
+    for (const LeafContact& c : near_pairs_) {  // already sorted
       if (c.gap <= threshold) out.push_back(c);
+      near_caches_.push_back(cacheOf(leafPair(c.t_leaf, c.o_leaf)));
+    }
     return;
   }
   out.clear();
   counters_ = TraversalCounters();
   placeTargets(o_from_t);
-  for (const LeafContact& candidate : near_pairs_) {
+  // A pair's gap shrinks by at most the displacement since its gap was measured: a
+  // pair still that far beyond the threshold needs no GJK.
+  const double moved = displacementBound(near_pose_, o_from_t);
+  for (std::size_t i = 0; i < near_pairs_.size(); ++i) {
+    const LeafContact& candidate = near_pairs_[i];
+    if (candidate.gap - moved > threshold) continue;
     const NodePair p = leafPair(candidate.t_leaf, candidate.o_leaf);
     bool beyond = false;
-    const LeafContact c = evaluate(p, o_from_piece_[p.t_slot], threshold, beyond);
+    const LeafContact c = evaluate(p, o_from_piece_[p.t_slot], threshold, beyond, &near_caches_[i]);
     if (!beyond && c.gap <= threshold) out.push_back(c);
   }
   sortContacts(out);

@@ -169,9 +169,10 @@ class GroupPairQuery {
   double displacementBound(const Rigid& from, const Rigid& to) const;
   /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.
   bool nearCovers(const Rigid& o_from_t, double reach) const;
-  /// GJK on a leaf pair, the target piece placed by `o_from_piece`.
+  /// GJK on a leaf pair, the target piece placed by `o_from_piece`, warm-started from
+  /// `cache` (the pair's entry of caches_ when null).
   LeafContact evaluate(const NodePair& p, const Rigid& o_from_piece, double max_distance,
-                       bool& beyond);
+                       bool& beyond, SimplexCache* cache = nullptr);
   NodePair leafPair(int t_leaf, int o_leaf) const;
   /// Replaces `c` by the closest points of the two leaves' real triangles when
   /// nearer than `bound`; false (c unchanged) when no triangle pair is.
@@ -201,6 +202,9 @@ class GroupPairQuery {
   Rigid near_pose_;
   double near_reach_ = 0.0;
   std::vector<LeafContact> near_pairs_;
+  /// near_pairs_' warm starts, in the same order: read in sequence, where the
+  /// set-associative caches_ would be probed at random.
+  std::vector<SimplexCache> near_caches_;
   Vec3 t_center_ = Vec3::Zero();  ///< sphere holding the target group (its frame)
   double t_radius_ = 0.0;
   TraversalCounters counters_;

@@ -125,36 +125,9 @@ std::string rowDescription(const std::string& row) {
 }
 
 std::string explanation(const std::string& row, const std::string& column, const std::string& outcome) {
-  static const std::map<std::pair<std::string, std::string>, std::string> text = {
-      {{"touching contact", "SC core Free"},
-       "Open defect of the core's FREE mode. Goal static and exactly touching (exact depth "
-       "0): every further update at the same goal turns the proxy again by the same "
-       "increment, so |RPDV| grows with the number of updates (the path's 10 settling "
-       "updates give the value in the note), while |TPDV| stays near 0; and the reported "
-       "contact configuration (contact_position, contact_orientation) overlaps the opponent "
-       "by the depth in the note (exact box test on that pose). Expected: TPDV = RPDV = 0 "
-       "and a contact pose within the tolerance of touching. Input, None and Mix on the "
-       "same path pass. Cause not yet found; the turn is the one that rotation's tiny "
-       "weight makes cheapest, and neither the per-iteration cap nor the conservative "
-       "advancement stops it from accumulating across updates."},
-      {{"deep penetration", "SC core Free"},
-       "Open defect of the core's FREE mode. FREE should minimise translation first, and "
-       "pure translation along the slab's normal frees the cube with the exact depth; FREE "
-       "instead reports more translation than that plus a turn (note). Repeating the update "
-       "at the static goal turns the proxy by a constant increment each time until it "
-       "settles in another local solution. The proxy is a local method started from the "
-       "last free pose, so FREE is not a global minimiser of translation; the manual's "
-       "claim that FREE's |TPDV| never exceeds INPUT's does not hold for this case."},
-      {{"rotational penetration (Fig. 5-11)", "SC core None"},
-       "Open defect of the core's NONE mode. One step before the bar reaches the slab the "
-       "pose is free (exact box test; INPUT, MIX and FREE report it apart with its "
-       "positive gap), yet NONE already reports a penetration there (distance -0, RPDV = "
-       "that step's turn, contact orientation = the previous pose's). From then on the "
-       "frozen orientation is one step early, and the final RPDV exceeds the exact turn "
-       "since the last free pose by one 0.25 degree step (the error is that step at the "
-       "bar's 2 m lever). Expected: the free pose reported apart and its orientation kept "
-       "as the contact orientation. Cause not yet found."},
-  };
+  // One entry per SmartCollision cell that does not pass: what fails and why. Empty
+  // while every such cell passes (a failure then prints OPEN until explained).
+  static const std::map<std::pair<std::string, std::string>, std::string> text = {};
   auto it = text.find({row, column});
   if (it == text.end()) it = text.find({row, "*"});
   if (it != text.end()) return it->second;

@@ -4,14 +4,24 @@
 #include <algorithm>
 
 #include "geometry/math_util.h"
+#include "query/epa.h"
 
 namespace sc::detail {
 
 Vec3 exitNormal(GroupPairQuery& query, const LeafContact& c, const Rigid& previous_proxy) {
   const LeafContact before = query.pairAt(c.t_leaf, c.o_leaf, previous_proxy);
   if (!before.intersecting) return before.normal;
-  const Vec3 t_center = previous_proxy * query.targetLeaves()[c.t_leaf].center;
-  return normalizedOr(t_center - query.opponentLeaves()[c.o_leaf].center, Vec3::UnitZ());
+  // The previous proxy intersects or touches too (a goal reached exactly touching):
+  // the leaves' own exit direction, where the direction between their centres would
+  // be any direction at all (a face-on-face contact offset sideways turned FREE's
+  // proxy a little more at every update).
+  const Leaf t = query.targetLeaf(c.t_leaf);
+  const Leaf o = query.opponentLeaf(c.o_leaf);
+  const EpaResult e =
+      penetrationDepth(*t.poly, previous_proxy * t.group_from_leaf, *o.poly, o.group_from_leaf);
+  if (e.normal.allFinite() && e.normal.norm() > 0.5) return e.normal.normalized();
+  const Vec3 t_center = previous_proxy * t.center;
+  return normalizedOr(t_center - o.center, Vec3::UnitZ());
 }
 
 void buildContactRows(GroupPairQuery& query, const Rigid& pose, const Vec3& center_at_pose,

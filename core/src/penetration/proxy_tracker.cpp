@@ -141,14 +141,18 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   bool feasible = true;
   out.iterations = slide(query, rotation, goal_center, center, settings, &feasible);
   // An infeasible slide left the proxy intersecting: even at the goal it has not
-  // reached a free pose.
+  // reached a free pose. The slide writes its pose as a centre and a rotation, which
+  // rounds: within that rounding the proxy is at the goal (else NONE would freeze its
+  // orientation at a free goal).
   const bool reached =
-      feasible && (proxy_ * center - goal_center).isZero(0.0) && rotation == goal.rotation;
+      feasible && rotation == goal.rotation &&
+      (proxy_ * center - goal_center).norm() <= 1e-12 * (1.0 + goal_center.norm() + center.norm());
+  if (reached) proxy_ = goal;
   if (!reached && mode == RotationMode::None && !penetrating_) {
     // Penetration began in this update: None keeps the orientation it had before.
     proxy_ = previous_proxy_;
-    out.iterations += slide(query, previous_proxy_.rotation, goal_center, center, settings,
-                            &feasible);
+    out.iterations +=
+        slide(query, previous_proxy_.rotation, goal_center, center, settings, &feasible);
   } else if (!feasible && mode == RotationMode::Input) {
     // No translation resolves (manual Fig. 5-11): Input turns too, rotation weighted
     // far above translation, from the last free proxy.
@@ -168,19 +172,17 @@ bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& ce
   return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
 }
 
-bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
-                                     const Vec3& center, const SceneSettings& settings,
-                                     ProxyOutcome& out) {
+bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                                     const SceneSettings& settings, ProxyOutcome& out) {
   // Depth against the exact planes (zero skin): unbiased by the skin. A proxy that
   // turned is projected with rotation too, or the skin would stay in its RPDV.
   query.contactsNear(proxy_, settings.tolerance, slideMarginOf(settings), contacts_);
-  const bool turned = settings.rotation_mode != RotationMode::None &&
-                      proxy_.rotation != goal.rotation;
+  const bool turned =
+      settings.rotation_mode != RotationMode::None && proxy_.rotation != goal.rotation;
   Rigid contact_pose = proxy_;
   Vec3 normal = Vec3::UnitZ();
   const int main = turned ? projectTwist(query, goal, center, settings, contact_pose, normal)
-                          : projectTranslation(query, goal, center, settings, contact_pose,
-                                               normal);
+                          : projectTranslation(query, goal, center, settings, contact_pose, normal);
   if (main == kGoalTouches) return false;
   const Vec3 tpdv = goal * center - contact_pose * center;
   // Exactly zero when the proxy follows the goal's rotation (Input mode).
@@ -209,9 +211,9 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal,
   return true;
 }
 
-int ProxyTracker::projectTranslation(GroupPairQuery& query, const Rigid& goal,
-                                     const Vec3& center, const SceneSettings& settings,
-                                     Rigid& contact_pose, Vec3& normal) {
+int ProxyTracker::projectTranslation(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                                     const SceneSettings& settings, Rigid& contact_pose,
+                                     Vec3& normal) {
   const Vec3 y = proxy_ * center;
   buildRows(query, proxy_);
   const Vec3 rc = proxy_.rotation * center;
@@ -254,8 +256,8 @@ int ProxyTracker::projectTwist(GroupPairQuery& query, const Rigid& goal, const V
   const Vec6 z = qp.feasible ? Vec6(qp.z) : Vec6::Zero();
   if (m > 0 && qp.feasible && z.head<3>().norm() + z.tail<3>().norm() * rho <= settings.tolerance) {
     if (z == target) return kGoalTouches;  // every row holds at the goal itself
-    contact_pose = poseAt(rotationFromVector(z.tail<3>()) * proxy_.rotation, center,
-                          y + z.head<3>());
+    contact_pose =
+        poseAt(rotationFromVector(z.tail<3>()) * proxy_.rotation, center, y + z.head<3>());
   }
   int main = -1;
   for (int i = 0; i < m; ++i)

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// NONE mode on the manual's Fig. 5-11 lever: a bar turning about one bottom edge held
+// 1 cm above a slab. While the bar is free the result must be apart; once it
+// penetrates, the orientation kept is that of the last free pose, so the RPDV is the
+// turn since then. The stability matrix found NONE freezing one step early.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "smartcollision/collision.h"
+#include "support/shapes.h"
+
+namespace sc::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+ModelPtr box(const Vec3& half) {
+  auto piece = buildPiece(ModelKind::ClosedPolyhedron, boxMesh(half));
+  EXPECT_TRUE(piece.ok());
+  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
+}
+
+Placement leverAt(double angle) {
+  Placement p;
+  p.setOrientation(Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ())));
+  p.local_center = Vec3(-1.0, -0.05, 0.0);  // the bar's lower left edge
+  p.world_center = Vec3(-1.0, 0.01, 0.0);   // held 1 cm above the slab
+  return p;
+}
+
+TEST(NoneModeLever, FreezesTheLastFreeOrientation) {
+  const ModelPtr bar = box(Vec3(1.0, 0.05, 0.05)), slab = box(Vec3(3, 0.5, 3));
+  const Part a{bar.get(), Rigid(), 1}, b{slab.get(), Rigid(), 2};
+  Placement ground;
+  ground.world_center = Vec3(0, -0.5, 0);
+  SceneSettings settings;
+  settings.rotation_mode = RotationMode::None;
+  PairTracker tracker;
+  DirectedResult out[2];
+  // The far end's lower edge (2 m from the pivot) reaches the slab at asin(0.01 / 2).
+  const double touch = -std::asin(0.01 / 2.0);
+  double last_free = 0.0;
+  for (int step = 0; step <= 60; ++step) {
+    const double angle = (10.0 - 0.25 * step) * kPi / 180.0;
+    tracker.update({&a, 1, leverAt(angle)}, {&b, 1, ground}, {true, false}, settings, out);
+    ASSERT_EQ(out[0].code, ErrorCode::Ok) << "step " << step;
+    if (angle > touch + 1e-9) {
+      last_free = angle;
+      EXPECT_FALSE(out[0].penetrating()) << "free pose reported penetrating at step " << step;
+      EXPECT_GT(out[0].distance, 0.0) << "step " << step;
+    }
+  }
+  // The final pose (-5 degrees) penetrates; NONE turns it back to the last free pose.
+  EXPECT_TRUE(out[0].penetrating());
+  EXPECT_NEAR(out[0].rpdv.norm(), last_free - (-5.0 * kPi / 180.0), 1e-6);
+}
+
+}  // namespace
+}  // namespace sc::test

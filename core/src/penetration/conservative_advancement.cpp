@@ -19,7 +19,8 @@ Rigid TwistMotion::at(double s) const {
 }
 
 double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap,
-               const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch) {
+               const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch,
+               double near_margin) {
   const double angle = motion.dtheta.norm();
   const Vec3 y0_local = motion.center;
   // Candidates: every pair within reach of the motion at its start.
@@ -27,7 +28,7 @@ double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap
   for (const Leaf& leaf : query.targetLeaves())
     reach_rho = std::max(reach_rho, (leaf.center - y0_local).norm() + leaf.radius);
   const double reach = motion.dc.norm() + angle * reach_rho + stop_gap;
-  query.contacts(motion.start, reach, scratch);
+  query.contactsNear(motion.start, reach, near_margin, scratch);
   // No point moves farther than `sweep` per unit of s: a pair whose gap exceeds
   // stop_gap + limit * sweep cannot block before `limit`. The candidates come nearest
   // first, so the first such pair ends the search (a long motion may gather
@@ -37,8 +38,7 @@ double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap
   for (const LeafContact& cand : scratch) {
     if (cand.gap > stop_gap + limit * sweep) break;
     if (cand.intersecting) continue;
-    if (std::binary_search(skip.begin(), skip.end(), LeafPair{cand.t_leaf, cand.o_leaf}))
-      continue;
+    if (std::binary_search(skip.begin(), skip.end(), LeafPair{cand.t_leaf, cand.o_leaf})) continue;
     const Leaf& leaf = query.targetLeaves()[cand.t_leaf];
     const double rho = (leaf.center - y0_local).norm() + leaf.radius;
     double s = 0.0;

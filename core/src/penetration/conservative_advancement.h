@@ -14,7 +14,7 @@ namespace sc::detail {
 
 /// A rigid motion of the target group, in the opponent group's frame.
 struct TwistMotion {
-  Rigid start;               ///< o_from_t at s = 0
+  Rigid start;                 ///< o_from_t at s = 0
   Vec3 center = Vec3::Zero();  ///< target's centre of rotation, target group frame
   Vec3 dc = Vec3::Zero();      ///< translation of the centre over the motion
   Vec3 dtheta = Vec3::Zero();  ///< rotation vector (opponent frame) over the motion
@@ -29,8 +29,10 @@ struct TwistMotion {
 /// pair within stop_gap at s = 0 blocks at once unless the motion opens it.
 /// Per pair: the gap along the last separating normal n shrinks at most at rate
 /// max(0, -n . dc) + |dtheta| rho, rho bounding the leaf's distance to the centre.
-/// `scratch` is reused between calls.
+/// `scratch` is reused between calls. The candidates come from the query's near
+/// pairs (contactsNear with `near_margin`), kept while they cover the motion's reach.
 double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap,
-               const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch);
+               const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch,
+               double near_margin);
 
 }  // namespace sc::detail

@@ -9,7 +9,9 @@
 #include "geometry/math_util.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace sc::detail {
@@ -18,6 +20,9 @@ namespace {
 
 /// Relative violation of a row beyond which a solution is rejected (rounding is ~1e-16).
 constexpr double kRowTolerance = 1e-9;
+/// Up to this many rows the QP is solved on all rows at once; beyond, on a working set
+/// of the most violated rows, grown by at least half this many per round.
+constexpr int kWorkingSetRows = 24;
 
 /// Least squares on the passive columns only; the others are zero.
 VecX solvePassive(const MatX& e, const VecX& f, const std::vector<bool>& passive) {
@@ -83,7 +88,8 @@ VecX nonNegativeLeastSquares(const MatX& e, const VecX& f, int max_iterations) {
   return u;
 }
 
-QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, const VecX& b) {
+QpResult solveContactQpAllRows(const VecX& goal, const VecX& weights, const MatX& a,
+                               const VecX& b) {
   const int n = static_cast<int>(goal.size());
   const int m = static_cast<int>(a.rows());
   QpResult out;
@@ -118,6 +124,71 @@ QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, co
   // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows.
   out.lambda = u / std::abs(r[n]);
   out.feasible = true;
+  return out;
+}
+
+namespace {
+
+/// Rows violated at `z` beyond the acceptance tolerance, with their violation scaled
+/// by the row's norm (most negative = most violated), skipping those in `in_set`.
+void violatedRows(const MatX& a, const VecX& b, const VecX& z, const std::vector<bool>& in_set,
+                  std::vector<std::pair<double, int>>& out) {
+  out.clear();
+  const double scale = 1.0 + b.cwiseAbs().maxCoeff() + z.cwiseAbs().maxCoeff();
+  const VecX slack = a * z - b;
+  for (int i = 0; i < static_cast<int>(a.rows()); ++i)
+    if (!in_set[i] && slack[i] < -kRowTolerance * scale)
+      out.emplace_back(slack[i] / std::max(a.row(i).norm(), 1e-300), i);
+}
+
+}  // namespace
+
+QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, const VecX& b) {
+  const int m = static_cast<int>(a.rows());
+  if (m <= kWorkingSetRows) return solveContactQpAllRows(goal, weights, a, b);
+  // Working set: solve with the rows the current point violates most, add the rows
+  // its solution violates, repeat. The optimum over a subset that keeps every other
+  // row is the optimum over all rows, and a subset without a solution means none;
+  // the NNLS stays small where hundreds of nearly parallel rows (a face on a large
+  // mesh) made it cycle. Each round adds a row, so it ends.
+  QpResult out;
+  out.feasible = true;
+  out.z = goal;
+  out.lambda = VecX::Zero(m);
+  std::vector<bool> in_set(static_cast<std::size_t>(m), false);
+  std::vector<int> rows;
+  std::vector<std::pair<double, int>> violated;
+  violatedRows(a, b, goal, in_set, violated);
+  while (!violated.empty()) {
+    // The most violated first, the set at least doubling: few rounds on thousands of rows.
+    const std::size_t add = std::min<std::size_t>(
+        violated.size(), std::max<std::size_t>(kWorkingSetRows / 2, rows.size()));
+    std::nth_element(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(add) - 1,
+                     violated.end());
+    for (std::size_t k = 0; k < add; ++k) {
+      in_set[static_cast<std::size_t>(violated[k].second)] = true;
+      rows.push_back(violated[k].second);
+    }
+    const auto count = static_cast<Eigen::Index>(rows.size());
+    MatX sub_a(count, a.cols());
+    VecX sub_b(count);
+    for (Eigen::Index k = 0; k < count; ++k) {
+      sub_a.row(k) = a.row(rows[static_cast<std::size_t>(k)]);
+      sub_b[k] = b[rows[static_cast<std::size_t>(k)]];
+    }
+    const QpResult sub = solveContactQpAllRows(goal, weights, sub_a, sub_b);
+    if (!sub.feasible) {
+      out.feasible = false;
+      out.z = goal;
+      out.lambda.setZero();
+      return out;
+    }
+    out.z = sub.z;
+    out.lambda.setZero();
+    for (Eigen::Index k = 0; k < count; ++k)
+      out.lambda[rows[static_cast<std::size_t>(k)]] = sub.lambda[k];
+    violatedRows(a, b, out.z, in_set, violated);
+  }
   return out;
 }
 

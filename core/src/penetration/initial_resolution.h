@@ -13,7 +13,7 @@ namespace sc::detail {
 /// Work arrays kept between calls.
 struct ResolutionScratch {
   std::vector<LeafContact> contacts;
-  std::vector<Vec3> normals;   ///< one row per intersecting leaf pair met so far
+  std::vector<Vec3> normals;    ///< one row per intersecting leaf pair met so far
   std::vector<double> offsets;  ///< row: normal . t >= offset, t the total translation
 };
 

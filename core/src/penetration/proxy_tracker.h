@@ -17,9 +17,9 @@ namespace sc::detail {
 struct ProxyOutcome {
   ErrorCode code = ErrorCode::NoResult;
   bool penetrating = false;
-  double distance = 0.0;    ///< > 0 apart; <= 0 penetrating (-|tpdv|)
-  LeafContact contact;      ///< closest pair (apart) or main contact at the contact pose
-  Rigid contact_pose;       ///< o_from_t at contact (== goal when apart)
+  double distance = 0.0;     ///< > 0 apart; <= 0 penetrating (-|tpdv|)
+  LeafContact contact;       ///< closest pair (apart) or main contact at the contact pose
+  Rigid contact_pose;        ///< o_from_t at contact (== goal when apart)
   Vec3 tpdv = Vec3::Zero();  ///< goal centre minus contact centre
   Vec3 rpdv = Vec3::Zero();  ///< rotation vector of R_goal R_contact^T
   int iterations = 0;
@@ -84,9 +84,9 @@ class ProxyTracker {
   Rigid previous_proxy_;  ///< proxy at the start of this update (free)
   std::vector<LeafContact> contacts_;
   std::vector<Row> rows_;
-  std::vector<LeafPair> skip_;  ///< the current contacts, sorted
+  std::vector<LeafPair> skip_;        ///< the current contacts, sorted
   Vec3 touch_normal_ = Vec3::Zero();  ///< main contact's normal when the goal only touches
-  TwistScratch twist_;          ///< Free and Mix work arrays
+  TwistScratch twist_;                ///< Free and Mix work arrays
 };
 
 }  // namespace sc::detail

@@ -26,8 +26,7 @@ bool isUnit(double length) { return std::abs(length - 1.0) <= kUnitLengthToleran
 
 /// A feature lists count() vertex indices >= 0 and -1 after them.
 bool wellFormed(const Feature& f) {
-  if (f.type != FeatureType::Vertex && f.type != FeatureType::Edge &&
-      f.type != FeatureType::Face)
+  if (f.type != FeatureType::Vertex && f.type != FeatureType::Edge && f.type != FeatureType::Face)
     return false;
   for (int i = 0; i < 3; ++i) {
     if (i < f.count() ? f.vertices[i] < 0 : f.vertices[i] != -1) return false;
@@ -53,9 +52,9 @@ double angleBetween(const Quat& a, const Quat& b) {
 /// the rigid transforms between the groups' frames is relative to them.
 double positionScale(const DirectedResult& r, const Placement& target, const Placement& opponent) {
   double scale = 1.0;
-  for (const Vec3* v : {&target.world_center, &target.local_center, &opponent.world_center,
-                        &opponent.local_center, &r.point_on_target, &r.point_on_opponent,
-                        &r.contact_position, &r.tpdv}) {
+  for (const Vec3* v :
+       {&target.world_center, &target.local_center, &opponent.world_center, &opponent.local_center,
+        &r.point_on_target, &r.point_on_opponent, &r.contact_position, &r.tpdv}) {
     scale = std::max(scale, maxAbs(*v));
   }
   return scale;
@@ -69,8 +68,8 @@ Status checkApart(const DirectedResult& r) {
 Status checkPenetrating(const DirectedResult& r) {
   const double depth = r.tpdv.stableNorm();
   if (std::abs(r.distance + depth) > kDepthRelativeTolerance * depth)
-    return broken("penetrating distance " + std::to_string(r.distance) + " is not -|TPDV| = " +
-                  std::to_string(-depth));
+    return broken("penetrating distance " + std::to_string(r.distance) +
+                  " is not -|TPDV| = " + std::to_string(-depth));
   return Status::success();
 }
 

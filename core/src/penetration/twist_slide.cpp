@@ -40,10 +40,13 @@ int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec
   const Vec6 weights = twistWeights(settings, rho);
   const double cap = settings.safety_coefficient * settings.tolerance;
   const Vec3 goal_center = goal * center;
+  const double margin = 2.0 * settings.tolerance;  // contactsNear's, as the translation slide
   int k = 0;
   for (; k < settings.max_iterations; ++k) {
     const Vec3 y = proxy * center;
-    query.contacts(proxy, settings.tolerance, scratch.contacts);
+    // Each iteration turns and moves the proxy a little: re-evaluate only the pairs
+    // found within a margin while it moves less than that (as the translation slide).
+    query.contactsNear(proxy, settings.tolerance, margin, scratch.contacts);
     buildContactRows(query, proxy, y, scratch.contacts, previous_proxy, scratch.rows,
                      settings.tolerance);
     const int m = static_cast<int>(scratch.rows.size());
@@ -68,7 +71,7 @@ int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec
     motion.dc = z.head<3>();
     motion.dtheta = z.tail<3>();
     scratch.skip.clear();
-    const double s = advance(query, motion, 0.5 * skin, scratch.skip, scratch.candidates);
+    const double s = advance(query, motion, 0.5 * skin, scratch.skip, scratch.candidates, margin);
     if (m == 0 && s >= 1.0 && z == target) {  // reached the goal unobstructed
       proxy = goal;
       ++k;

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// The proxy's QP: the working-set solver against the all-rows solve, on problems
+// shaped like contacts (many nearly parallel rows from one face, a few others) and on
+// random ones, feasible and infeasible; and the optimality conditions of the answer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "penetration/contact_qp.h"
+
+namespace sc::detail {
+namespace {
+
+struct Problem {
+  VecX goal, weights, b;
+  MatX a;
+};
+
+/// m rows in n unknowns: `face` rows with normals within `spread` of one direction
+/// (a face resting on a large mesh), the rest random on that direction's side (so a
+/// far enough step along it frees everything); right-hand sides up to `depth`.
+Problem contactLike(std::mt19937& rng, int n, int m, int face, double spread, double depth) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Problem p;
+  p.goal = VecX::Zero(n);
+  for (int i = 0; i < n; ++i) p.goal[i] = 0.1 * g(rng);
+  p.weights = VecX::Ones(n);
+  if (n == 6) p.weights.tail(3).setConstant(1e-3);  // cheap rotation, as in FREE
+  p.a = MatX(m, n);
+  p.b = VecX(m);
+  VecX dir = VecX::Zero(n);
+  dir[0] = 1.0;
+  for (int i = 0; i < m; ++i) {
+    VecX row(n);
+    for (int k = 0; k < n; ++k) row[k] = g(rng);
+    if (i < face) row = dir + spread * row;
+    row[0] = std::abs(row[0]) + 0.1;
+    p.a.row(i) = row.normalized().transpose();
+    p.b[i] = depth * u(rng);
+  }
+  return p;
+}
+
+/// KKT of min 1/2 (z - goal)^T W (z - goal) s.t. A z >= b at (z, lambda).
+void expectOptimal(const Problem& p, const QpResult& r, const char* what) {
+  ASSERT_TRUE(r.feasible) << what;
+  const VecX slack = p.a * r.z - p.b;
+  EXPECT_GT(slack.minCoeff(), -1e-8) << what;
+  EXPECT_GT(r.lambda.minCoeff(), -1e-12) << what;
+  const VecX stationarity = p.weights.asDiagonal() * (r.z - p.goal) - p.a.transpose() * r.lambda;
+  EXPECT_LT(stationarity.norm(), 1e-7 * (1.0 + r.lambda.norm())) << what;
+  EXPECT_LT(std::abs(r.lambda.dot(slack)), 1e-8 * (1.0 + r.lambda.norm())) << what;
+}
+
+TEST(ContactQp, WorkingSetMatchesAllRows) {
+  std::mt19937 rng(7);
+  int compared = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = trial % 2 == 0 ? 3 : 6;
+    const int m = 30 + trial * 3;
+    const Problem p = contactLike(rng, n, m, m * 3 / 4, trial % 3 == 0 ? 1e-3 : 0.05, 0.05);
+    const QpResult ws = solveContactQp(p.goal, p.weights, p.a, p.b);
+    const QpResult all = solveContactQpAllRows(p.goal, p.weights, p.a, p.b);
+    ASSERT_EQ(ws.feasible, all.feasible) << "trial " << trial;
+    if (!ws.feasible) continue;
+    ++compared;
+    // The minimiser is unique (W positive definite): both must find it.
+    EXPECT_LT((ws.z - all.z).norm(), 1e-7 * (1.0 + all.z.norm())) << "trial " << trial;
+    expectOptimal(p, ws, "working set");
+  }
+  EXPECT_GT(compared, 150);
+}
+
+TEST(ContactQp, WorkingSetReportsInfeasibleWedges) {
+  // Two opposite half-spaces that cannot both hold, buried among many harmless rows.
+  std::mt19937 rng(11);
+  for (const int n : {3, 6}) {
+    Problem p = contactLike(rng, n, 120, 100, 0.05, 0.01);
+    VecX e = VecX::Zero(n);
+    e[1] = 1.0;
+    p.a.row(5) = e.transpose();
+    p.b[5] = 1.0;  // z_1 >= 1
+    p.a.row(77) = -e.transpose();
+    p.b[77] = 1.0;  // z_1 <= -1
+    EXPECT_FALSE(solveContactQp(p.goal, p.weights, p.a, p.b).feasible) << n;
+    EXPECT_FALSE(solveContactQpAllRows(p.goal, p.weights, p.a, p.b).feasible) << n;
+  }
+}
+
+TEST(ContactQp, FeasibleGoalIsItsOwnAnswer) {
+  std::mt19937 rng(3);
+  Problem p = contactLike(rng, 6, 100, 60, 0.05, 0.01);
+  p.b = p.a * p.goal - VecX::Constant(100, 0.01);  // every row holds at the goal
+  const QpResult r = solveContactQp(p.goal, p.weights, p.a, p.b);
+  ASSERT_TRUE(r.feasible);
+  EXPECT_EQ(r.z, p.goal);
+  EXPECT_EQ(r.lambda.cwiseAbs().maxCoeff(), 0.0);
+}
+
+}  // namespace
+}  // namespace sc::detail

@@ -33,6 +33,13 @@ run stability_matrix "$build/bench/stability_matrix" --csv="$out/stability.csv" 
 # Up to 400k triangles: knot1's next level (410k) alone would preprocess for minutes.
 run triangle_scaling "$build/bench/triangle_scaling" --csv "$out/triangle_scaling.csv" \
   --max-triangles 400000
+# The haptic coupling demo with the 75k-triangle bunny: on the three threads (rates,
+# periods; docs/benchmarks.md) and lock-step (force continuity on simulated time).
+cavity=(--scene cavity --headless --device "script:$root/demos/haptic_coupling/cavity_push.txt")
+run haptic_cavity "$build/demos/haptic_coupling" "${cavity[@]}" --seconds 12 \
+  --json "$out/haptic_cavity.json"
+run haptic_cavity_lockstep "$build/demos/haptic_coupling" "${cavity[@]}" --lockstep \
+  --json "$out/haptic_cavity_lockstep.json"
 if [[ "${SC_BENCH_SOAK:-0}" == 1 ]]; then
   echo "== soak"
   "$root/bench/soak.sh" 1000000 potential "$build" > "$out/soak.csv"

@@ -13,6 +13,8 @@
 // With --loop a recorded script plays back and forth until --seconds: the soak of
 // bench/soak_haptic.sh, whose NaN, energy and memory figures the JSON reports.
 #include <btBulletDynamicsCommon.h>
+#include <pthread.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -57,16 +59,23 @@ class SeqLock {
     for (std::size_t i = 0; i < N; ++i) data_[i].store(v[i], std::memory_order_relaxed);
     seq_.store(s + 2, std::memory_order_release);
   }
-  /// False until the first write.
+  /// False until the first write, and when the writer was mid-write for every one of
+  /// a few attempts (preempted there: a reader that spun would wait for it, and a
+  /// FIFO haptic thread could wait on its own core); `out` is then left as it was.
   bool read(std::array<double, N>& out) const {
-    for (;;) {
+    std::array<double, N> copy;
+    for (int attempt = 0; attempt < 64; ++attempt) {
       const unsigned s0 = seq_.load(std::memory_order_acquire);
       if (s0 == 0) return false;
       if (s0 & 1u) continue;
-      for (std::size_t i = 0; i < N; ++i) out[i] = data_[i].load(std::memory_order_relaxed);
+      for (std::size_t i = 0; i < N; ++i) copy[i] = data_[i].load(std::memory_order_relaxed);
       std::atomic_thread_fence(std::memory_order_acquire);
-      if (seq_.load(std::memory_order_relaxed) == s0) return true;
+      if (seq_.load(std::memory_order_relaxed) == s0) {
+        out = copy;
+        return true;
+      }
     }
+    return false;
   }
 
  private:
@@ -298,6 +307,8 @@ class Demo {
     home_pose.position = tool_home_;
     device_pose_.write(wordsOf(home_pose));
     body_state_.write(wordsOf(sc::bullet::bodyStateOf(*tool_)));
+    device_pose_.read(physics_device_);
+    body_state_.read(haptic_body_);
   }
 
   ~Demo() {
@@ -431,7 +442,8 @@ class Demo {
     char buf[4096];
     std::snprintf(
         buf, sizeof(buf),
-        "{\n  \"scene\": \"%s\",\n  \"device\": \"%s\",\n  \"clock\": \"%s\",\n  "
+        "{\n  \"scene\": \"%s\",\n  \"device\": \"%s\",\n  \"clock\": \"%s\",\n  \"haptic_fifo\": "
+        "%s,\n  "
         "\"wall_seconds\": %.3f,\n  \"tool_triangles\": %zu,\n  "
         "\"fixed_triangles\": %zu,\n"
         "  \"seconds\": %.3f,\n  \"haptic_samples\": %ld,\n  \"haptic_rate_hz\": %.1f,\n"
@@ -460,8 +472,9 @@ class Demo {
         "  \"max_penetration_m\": %.6f,\n  \"final_position\": [%.5f, %.5f, %.5f],\n"
         "  \"final_rotation_vector\": [%.5f, %.5f, %.5f],\n  \"inserted_depth_m\": %.5f,\n  "
         "\"inside\": %s\n}\n",
-        options_.scene.c_str(), device_->name(), lockstep_ ? "lockstep" : "realtime", wall_seconds_,
-        tool_triangles_, fixed_triangles_, elapsed_, periods_.count() + 1,
+        options_.scene.c_str(), device_->name(), lockstep_ ? "lockstep" : "realtime",
+        haptic_fifo_.load() ? "true" : "false", wall_seconds_, tool_triangles_, fixed_triangles_,
+        elapsed_, periods_.count() + 1,
         elapsed_ > 0 ? double(haptic_count_.load()) / elapsed_ : 0.0,
         1e3 * periods_.percentile(0.5), 1e3 * periods_.percentile(0.99), 1e3 * periods_.max(),
         physics_count_.load(), elapsed_ > 0 ? double(physics_count_.load()) / elapsed_ : 0.0,
@@ -635,9 +648,8 @@ class Demo {
   /// One physics step: the coupling with the latest device pose, Bullet + SmartCollision,
   /// the body state handed to the haptic loop.
   void physicsStep() {
-    PoseWords d{};
-    device_pose_.read(d);
-    const sc::bullet::CouplingPose device = bodyTarget(poseOf(d.data()));
+    device_pose_.read(physics_device_);  // kept as it was if the writer is mid-write
+    const sc::bullet::CouplingPose device = bodyTarget(poseOf(physics_device_.data()));
     const auto t0 = Clock::now();
     const sc::bullet::CouplingWrench w = coupling_->apply(device, *tool_);
     monitor_.beforeStep(*coupling_, device, *tool_, w);
@@ -668,6 +680,7 @@ class Demo {
   }
 
   void hapticLoop() {
+    haptic_fifo_ = raiseToRealTime();
     const auto period =
         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kHapticHz));
     auto next = Clock::now();
@@ -684,6 +697,16 @@ class Demo {
     }
   }
 
+  /// A haptic loop's deadline is a millisecond: ask for FIFO scheduling above every
+  /// ordinary thread (the physics thread included), as haptic applications do. It
+  /// needs CAP_SYS_NICE or an rtprio limit; without them the loop runs as before.
+  /// Safe because the loop sleeps between samples (microseconds of work per period).
+  static bool raiseToRealTime() {
+    sched_param param{};
+    param.sched_priority = sched_get_priority_min(SCHED_FIFO) + 10;
+    return pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
+  }
+
   /// One haptic sample, `interval` seconds after the previous one (0 for the first):
   /// poll the device, the reaction from the latest body state to the device, and the
   /// force-continuity check.
@@ -697,8 +720,8 @@ class Demo {
       pose.orientation =
           Quat(p.orientation[0], p.orientation[1], p.orientation[2], p.orientation[3]).normalized();
       device_pose_.write(wordsOf(pose));
-      StateWords s{};
-      body_state_.read(s);
+      body_state_.read(haptic_body_);  // kept as it was if the writer is mid-write
+      const StateWords& s = haptic_body_;
       const sc::bullet::CouplingWrench r = coupling_->reaction(bodyTarget(pose), stateOf(s));
       if (!finite(stateOf(s)) || !finite(r)) ++non_finite_samples_;
       sc::demo::Wrench out;
@@ -778,13 +801,17 @@ class Demo {
   sc::bullet::CouplingEnergyMonitor monitor_;  ///< physics thread
 
   SeqLock<7> device_pose_;  ///< haptic -> physics, graphics
-  SeqLock<15> body_state_;  ///< physics -> haptic, graphics
+  SeqLock<15> body_state_;
+  PoseWords physics_device_{};  ///< physics thread: the last device pose read
+  StateWords haptic_body_{};  ///< haptic thread: the last body state read  ///< physics -> haptic,
+                              ///< graphics
   std::atomic<bool> running_{false};
   std::thread physics_, haptic_;
   Clock::time_point start_time_;
   double elapsed_ = 0.0;       ///< seconds of the run: simulated with --lockstep
   double wall_seconds_ = 0.0;  ///< wall time of the run
   bool lockstep_ = false;
+  std::atomic<bool> haptic_fifo_{false};  ///< the haptic thread got FIFO scheduling
 
   // Metrics (each written by one thread, read after the join or as a display value).
   std::atomic<long> haptic_count_{0}, physics_count_{0};

@@ -534,6 +534,23 @@ bool GroupPairQuery::nearCovers(const Rigid& o_from_t, double reach) const {
 
 void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, double margin,
                                   std::vector<LeafContact>& out) {
+  // The same pose and threshold as the last call (a slide that did not move, then the
+  // depth's projection at the same proxy): its answer, without the GJK calls.
+  if (near_valid_ && memo_valid_ && threshold == memo_threshold_ &&
+      o_from_t.rotation == memo_pose_.rotation && o_from_t.translation == memo_pose_.translation) {
+    counters_ = TraversalCounters();
+    out = memo_out_;
+    return;
+  }
+  contactsNearUncached(o_from_t, threshold, margin, out);
+  memo_valid_ = true;
+  memo_pose_ = o_from_t;
+  memo_threshold_ = threshold;
+  memo_out_ = out;
+}
+
+void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
+                                          std::vector<LeafContact>& out) {
   if (!nearCovers(o_from_t, threshold)) {
     contacts(o_from_t, threshold + margin, near_pairs_);
     near_valid_ = true;

@@ -168,6 +168,9 @@ class GroupPairQuery {
   /// Largest displacement of a target point from pose `from` to pose `to`.
   double displacementBound(const Rigid& from, const Rigid& to) const;
   /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.
+  /// contactsNear() without its memo of the last call.
+  void contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
+                            std::vector<LeafContact>& out);
   bool nearCovers(const Rigid& o_from_t, double reach) const;
   /// GJK on a leaf pair, the target piece placed by `o_from_piece`, warm-started from
   /// `cache` (the pair's entry of caches_ when null).
@@ -205,6 +208,11 @@ class GroupPairQuery {
   /// near_pairs_' warm starts, in the same order: read in sequence, where the
   /// set-associative caches_ would be probed at random.
   std::vector<SimplexCache> near_caches_;
+  /// contactsNear()'s last answer, valid while near_valid_ (every rebuild rewrites it).
+  bool memo_valid_ = false;
+  Rigid memo_pose_;
+  double memo_threshold_ = 0.0;
+  std::vector<LeafContact> memo_out_;
   Vec3 t_center_ = Vec3::Zero();  ///< sphere holding the target group (its frame)
   double t_radius_ = 0.0;
   TraversalCounters counters_;

@@ -21,7 +21,7 @@ set key outside bottom center horizontal
 set title "Dynamic penetration depth under haptic-like motion: fandisk (13k triangles) against armadillo (52k)"
 
 # Columns: step, wall_us, cpu_us, tpdv.
-plot csv every ::1 using 1:2 with points pt 7 ps 0.3 lc rgb "#bbbbbb" title "wall clock (loaded machine)", \
+plot csv every ::1 using 1:2 with points pt 7 ps 0.3 lc rgb "#bbbbbb" title "wall clock", \
      csv every ::1 using 1:3 with points pt 7 ps 0.3 lc rgb "#1f77b4" title "thread CPU time", \
      1000 with lines dt 2 lc rgb "#d62728" title "1 ms (1 kHz loop)", \
      csv every ::1 using 1:4 axes x1y2 with lines lw 2 lc rgb "#2ca02c" title "|TPDV|"

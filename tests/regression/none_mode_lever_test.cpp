@@ -17,12 +17,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-ModelPtr box(const Vec3& half) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, boxMesh(half));
-  EXPECT_TRUE(piece.ok());
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
 Placement leverAt(double angle) {
   Placement p;
   p.setOrientation(Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ())));
@@ -32,7 +26,8 @@ Placement leverAt(double angle) {
 }
 
 TEST(NoneModeLever, FreezesTheLastFreeOrientation) {
-  const ModelPtr bar = box(Vec3(1.0, 0.05, 0.05)), slab = box(Vec3(3, 0.5, 3));
+  const ModelPtr bar = boxModel(Vec3(1.0, 0.05, 0.05)), slab = boxModel(Vec3(3, 0.5, 3));
+  ASSERT_TRUE(bar && slab);
   const Part a{bar.get(), Rigid(), 1}, b{slab.get(), Rigid(), 2};
   Placement ground;
   ground.world_center = Vec3(0, -0.5, 0);

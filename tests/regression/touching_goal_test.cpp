@@ -17,16 +17,13 @@
 namespace sc::test {
 namespace {
 
-ModelPtr cube() {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, boxMesh(Vec3(0.5, 0.5, 0.5)));
-  EXPECT_TRUE(piece.ok());
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
+ModelPtr cube() { return boxModel(Vec3(0.5, 0.5, 0.5)); }
 
 class TouchingGoal : public ::testing::TestWithParam<RotationMode> {};
 
 TEST_P(TouchingGoal, StaticTouchingGoalStaysPut) {
   const ModelPtr m = cube();
+  ASSERT_TRUE(m);
   const Part a{m.get(), Rigid(), 1}, b{m.get(), Rigid(), 2};
   SceneSettings settings;
   settings.rotation_mode = GetParam();

@@ -15,11 +15,7 @@
 namespace sc::test {
 namespace {
 
-ModelPtr cube() {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, boxMesh(Vec3(0.5, 0.5, 0.5)));
-  EXPECT_TRUE(piece.ok());
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
+ModelPtr cube() { return boxModel(Vec3(0.5, 0.5, 0.5)); }
 
 Placement at(double y) {
   Placement p;
@@ -38,6 +34,7 @@ void expectFaceNormal(const DirectedResult out[2], const char* what) {
 
 TEST(TouchingNormal, TrackedIntoTouchingKeepsTheFaceNormal) {
   const ModelPtr m = cube();
+  ASSERT_TRUE(m);
   const Part a{m.get(), Rigid(), 1}, b{m.get(), Rigid(), 2};
   PairTracker tracker;
   DirectedResult out[2];
@@ -48,6 +45,7 @@ TEST(TouchingNormal, TrackedIntoTouchingKeepsTheFaceNormal) {
 
 TEST(TouchingNormal, FirstSeenTouchingGetsTheFaceNormal) {
   const ModelPtr m = cube();
+  ASSERT_TRUE(m);
   const Part a{m.get(), Rigid(), 1}, b{m.get(), Rigid(), 2};
   SceneSettings settings;
   settings.resolve_initial_intersection = true;

@@ -13,11 +13,7 @@
 namespace sc::test {
 namespace {
 
-ModelPtr cube() {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, boxMesh(Vec3(0.5, 0.5, 0.5)));
-  EXPECT_TRUE(piece.ok());
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
+ModelPtr cube() { return boxModel(Vec3(0.5, 0.5, 0.5)); }
 
 Placement at(const Vec3& c) {
   Placement p;
@@ -27,6 +23,7 @@ Placement at(const Vec3& c) {
 
 TEST(TouchingStart, MovingApartNeverReportsAnOutwardDepth) {
   const ModelPtr m = cube();
+  ASSERT_TRUE(m);
   const Part a{m.get(), Rigid(), 1}, b{m.get(), Rigid(), 2};
   for (RotationMode mode :
        {RotationMode::None, RotationMode::Input, RotationMode::Free, RotationMode::Mix}) {
@@ -35,13 +32,13 @@ TEST(TouchingStart, MovingApartNeverReportsAnOutwardDepth) {
       settings.rotation_mode = mode;
       PairTracker tracker;
       DirectedResult out[2];
-      tracker.update({&a, 1, at(Vec3::Zero())}, {&b, 1, at(Vec3(1 + gap, 0.1, 0.05))},
-                     {true, true}, settings, out);
-      tracker.update({&a, 1, at(Vec3::Zero())}, {&b, 1, at(Vec3(1.0042, 0.1, 0.05))},
-                     {true, true}, settings, out);
+      tracker.update({&a, 1, at(Vec3::Zero())}, {&b, 1, at(Vec3(1 + gap, 0.1, 0.05))}, {true, true},
+                     settings, out);
+      tracker.update({&a, 1, at(Vec3::Zero())}, {&b, 1, at(Vec3(1.0042, 0.1, 0.05))}, {true, true},
+                     settings, out);
       for (int d = 0; d < 2; ++d) {
-        SCOPED_TRACE(testing::Message() << "mode " << static_cast<int>(mode) << " gap " << gap
-                                        << " direction " << d);
+        SCOPED_TRACE(testing::Message()
+                     << "mode " << static_cast<int>(mode) << " gap " << gap << " direction " << d);
         ASSERT_EQ(out[d].code, ErrorCode::Ok);
         EXPECT_NEAR(out[d].distance, 0.0042, 1e-9);
         EXPECT_EQ(out[d].tpdv.norm(), 0.0);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "preprocess/convex_hull.h"
+#include "smartcollision/collision.h"
 
 namespace sc::test {
 
@@ -23,6 +24,12 @@ MeshData boxMesh(const Vec3& h) {
                  Tri(0, 1, 5), Tri(0, 5, 4), Tri(2, 6, 7), Tri(2, 7, 3),   // -y, +y
                  Tri(0, 4, 6), Tri(0, 6, 2), Tri(1, 3, 7), Tri(1, 7, 5)};  // -x, +x
   return m;
+}
+
+ModelPtr boxModel(const Vec3& half_extents) {
+  auto piece = buildPiece(ModelKind::ClosedPolyhedron, boxMesh(half_extents));
+  if (!piece.ok()) return nullptr;
+  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
 }
 
 namespace {

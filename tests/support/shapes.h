@@ -16,6 +16,9 @@ double logUniform(Rng& rng, double lo, double hi);
 
 /// Axis-aligned box centred at the origin, 12 triangles, outward CCW.
 MeshData boxMesh(const Vec3& half_extents);
+/// A one-piece closed-polyhedron model of boxMesh(half_extents); null if the piece
+/// cannot be built.
+ModelPtr boxModel(const Vec3& half_extents);
 /// Regular tetrahedron centred at the origin with the given circumradius.
 MeshData regularTetrahedronMesh(double circumradius);
 /// Random well-shaped tetrahedron of about `size` around the origin, outward CCW.

@@ -317,6 +317,8 @@ GjkResult gjkDistance(const ConvexPolytope& a, const Rigid& frame_from_a, const 
           std::clamp(cache.hint_b, 0, nb - 1)};
   const double scale = a.radius + b.radius + (a_from_b * b.center - a.center).norm();
   const double touching2 = kTouching * kTouching * scale * scale;
+  const double within2 =
+      settings.within_distance >= 0.0 ? settings.within_distance * settings.within_distance : -1.0;
 
   Simplex s = startSimplex(cache, cso, scale);
   double lower = 0.0;
@@ -324,6 +326,10 @@ GjkResult gjkDistance(const ConvexPolytope& a, const Rigid& frame_from_a, const 
   for (;;) {
     if (s.count == 4 || s.vv <= touching2) {
       status = GjkStatus::Intersecting;
+      break;
+    }
+    if (s.vv <= within2) {  // s.vv bounds the squared distance from above
+      status = GjkStatus::WithinDistance;
       break;
     }
     if (result.iterations >= settings.max_iterations) break;
@@ -354,7 +360,7 @@ GjkResult gjkDistance(const ConvexPolytope& a, const Rigid& frame_from_a, const 
   record(s, cso, result, cache);
   if (status == GjkStatus::Intersecting) return result;  // distance and bound stay 0
   result.lower_bound = lower;
-  if (status == GjkStatus::BeyondMaxDistance) {
+  if (status == GjkStatus::BeyondMaxDistance || status == GjkStatus::WithinDistance) {
     result.distance = std::sqrt(s.vv);  // an upper bound; only lower_bound is promised
     return result;
   }

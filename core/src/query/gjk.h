@@ -22,18 +22,22 @@ enum class GjkStatus : std::uint8_t {
   Separated,          ///< distance > 0; every field valid
   Intersecting,       ///< the polytopes overlap or touch (distance 0); points unset
   BeyondMaxDistance,  ///< lower_bound > max_distance; only lower_bound valid
+  WithinDistance,     ///< distance <= within_distance (an upper bound); only the bounds valid
   NotConverged,       ///< iteration cap; fields hold the best finite estimate
 };
 
 struct GjkSettings {
   double max_distance = kInfinity;  ///< stop once the lower bound exceeds this
+  /// Stop once the distance is known to be at most this (a traversal that only asks
+  /// whether two hulls are within a reach needs no more); negative: never.
+  double within_distance = -1.0;
   int max_iterations = 128;
 };
 
 struct GjkResult {
   GjkStatus status = GjkStatus::BeyondMaxDistance;
-  double distance = 0.0;     ///< >= 0
-  double lower_bound = 0.0;  ///< <= true distance, always valid
+  double distance = 0.0;        ///< >= 0
+  double lower_bound = 0.0;     ///< <= true distance, always valid
   Vec3 point_a = Vec3::Zero();  ///< on A, in the common frame
   Vec3 point_b = Vec3::Zero();  ///< on B, in the common frame
   Vec3 normal = Vec3::UnitX();  ///< unit, from B towards A: (point_a - point_b) / distance

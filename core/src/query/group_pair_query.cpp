@@ -238,12 +238,14 @@ double GroupPairQuery::sphereBound(const NodePair& p) const {
   return (tc - oc).norm() - t.radius - o.radius;
 }
 
-double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance) {
+double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance,
+                                      double within_distance) {
   ++counters_.node_gjk;
   const Slot& ts = t_slots_[p.t_slot];
   const Slot& os = o_slots_[p.o_slot];
   GjkSettings settings;
   settings.max_distance = max_distance;
+  settings.within_distance = within_distance;
   const GjkResult r =
       gjkDistance(polytopeOf(ts, p.t_node), o_from_piece_[p.t_slot], polytopeOf(os, p.o_node),
                   os.group_from_piece, settings, cacheOf(p));
@@ -397,7 +399,7 @@ void GroupPairQuery::traverse(Policy& policy) {
       continue;
     }
     if (!p.refined) {
-      p.bound = std::max(p.bound, nodeLowerBound(p, policy.reach()));
+      p.bound = std::max(p.bound, nodeLowerBound(p, policy.reach(), policy.splitWithin()));
       p.refined = true;
       if (policy.prunes(p.bound)) continue;
       if (!heap_.empty() && p.bound > heap_.front().bound) {
@@ -444,6 +446,7 @@ struct GroupPairQuery::DistancePolicy {
 
   bool prunes(double bound) const { return found ? bound >= best.gap : bound > max_distance; }
   double reach() const { return found ? best.gap : max_distance; }
+  double splitWithin() const { return -1.0; }  // the order needs tight bounds
   bool admits(const NodePair&) const { return true; }
   void offer(const LeafContact& c) {
     if (found && c.gap >= best.gap) return;
@@ -491,6 +494,9 @@ struct GroupPairQuery::ContactsPolicy {
 
   bool prunes(double bound) const { return bound > threshold; }
   double reach() const { return threshold; }
+  /// Every pair within the threshold is visited, in any order: a node pair known to
+  /// be within it is split without its exact distance.
+  double splitWithin() const { return threshold; }
   bool admits(const NodePair&) const { return true; }
   bool visit(const NodePair& p) {
     bool beyond = false;
@@ -551,34 +557,78 @@ void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, doubl
 
 void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                                           std::vector<LeafContact>& out) {
+  out.clear();
   if (!nearCovers(o_from_t, threshold)) {
-    contacts(o_from_t, threshold + margin, near_pairs_);
-    near_valid_ = true;
-    near_pose_ = o_from_t;
-    near_reach_ = threshold + margin;
-    out.clear();
-    near_caches_.clear();
-    for (const LeafContact& c : near_pairs_) {  // already sorted
+    rebuildNear(o_from_t, threshold + margin);
+    for (const LeafContact& c : near_pairs_)  // already sorted
       if (c.gap <= threshold) out.push_back(c);
-      near_caches_.push_back(cacheOf(leafPair(c.t_leaf, c.o_leaf)));
-    }
     return;
   }
-  out.clear();
   counters_ = TraversalCounters();
   placeTargets(o_from_t);
-  // A pair's gap shrinks by at most the displacement since its gap was measured: a
-  // pair still that far beyond the threshold needs no GJK.
-  const double moved = displacementBound(near_pose_, o_from_t);
+  const int pose = prepareNearBounds(o_from_t);
   for (std::size_t i = 0; i < near_pairs_.size(); ++i) {
+    if (nearGapBound(i) > threshold) continue;
     const LeafContact& candidate = near_pairs_[i];
-    if (candidate.gap - moved > threshold) continue;
     const NodePair p = leafPair(candidate.t_leaf, candidate.o_leaf);
     bool beyond = false;
-    const LeafContact c = evaluate(p, o_from_piece_[p.t_slot], threshold, beyond, &near_caches_[i]);
+    // Evaluated up to the set's reach: an exact gap there keeps the pair pruned for
+    // longer than the lower bound an early exit at the threshold would give.
+    const LeafContact c =
+        evaluate(p, o_from_piece_[p.t_slot], near_reach_, beyond, &near_caches_[i]);
+    near_gaps_[i].gap = c.gap;
+    near_gaps_[i].pose = pose;
     if (!beyond && c.gap <= threshold) out.push_back(c);
   }
   sortContacts(out);
+}
+
+void GroupPairQuery::rebuildNear(const Rigid& o_from_t, double reach) {
+  contacts(o_from_t, reach, near_pairs_);
+  near_valid_ = true;
+  near_pose_ = o_from_t;
+  near_reach_ = reach;
+  near_poses_.assign(1, o_from_t);
+  near_caches_.clear();
+  near_gaps_.clear();
+  for (const LeafContact& c : near_pairs_) {
+    const NodePair p = leafPair(c.t_leaf, c.o_leaf);
+    const Slot& ts = t_slots_[p.t_slot];
+    const HullBvhNode& node = ts.data->hierarchy.nodes[p.t_node];
+    near_caches_.push_back(cacheOf(p));
+    near_gaps_.push_back({ts.group_from_piece * node.center, node.radius, c.gap, 0});
+  }
+}
+
+int GroupPairQuery::prepareNearBounds(const Rigid& o_from_t) {
+  // A pair's gap shrinks by at most its target leaf's displacement since its gap was
+  // measured. Poses are kept while few; past that every gap is re-based on this pose
+  // (a valid, looser bound) so the list stays short.
+  constexpr std::size_t kMaxPoses = 32;
+  auto changeTo = [&](const Rigid& from) {
+    PoseChange d{o_from_t.rotation - from.rotation, o_from_t.translation - from.translation, 0.0};
+    d.spin = d.rotation.norm();
+    return d;
+  };
+  near_changes_.clear();
+  for (const Rigid& from : near_poses_) near_changes_.push_back(changeTo(from));
+  if (near_poses_.size() >= kMaxPoses) {
+    for (std::size_t i = 0; i < near_gaps_.size(); ++i) {
+      near_gaps_[i].gap = nearGapBound(i);
+      near_gaps_[i].pose = 0;
+    }
+    near_poses_.clear();
+    near_changes_.clear();
+  }
+  near_poses_.push_back(o_from_t);
+  near_changes_.push_back(changeTo(o_from_t));
+  return static_cast<int>(near_poses_.size()) - 1;
+}
+
+double GroupPairQuery::nearGapBound(std::size_t i) const {
+  const NearGap& g = near_gaps_[i];
+  const PoseChange& d = near_changes_[g.pose];
+  return g.gap - ((d.rotation * g.center + d.translation).norm() + d.spin * g.radius);
 }
 
 struct GroupPairQuery::IntersectPolicy {
@@ -587,6 +637,7 @@ struct GroupPairQuery::IntersectPolicy {
 
   bool prunes(double bound) const { return bound > 0.0; }
   double reach() const { return 0.0; }
+  double splitWithin() const { return -1.0; }
   bool admits(const NodePair&) const { return true; }
   bool visit(const NodePair& p) {
     bool beyond = false;
@@ -649,6 +700,7 @@ struct GroupPairQuery::ToiPolicy {
     return bound > stop_gap && bound - limit * reach_length > 0.5 * stop_gap;
   }
   double reach() const { return limit * reach_length + 0.5 * stop_gap; }
+  double splitWithin() const { return -1.0; }
   bool admits(const NodePair& p) const {
     // Swept bounding spheres: the target sphere's centre runs along a segment.
     const HullBvhNode& t = q.t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
@@ -706,9 +758,10 @@ double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, 
     traverse(policy);
     return policy.limit;
   }
-  const double moved = displacementBound(near_pose_, o_from_t);
-  for (const LeafContact& candidate : near_pairs_) {
-    if (policy.prunes(candidate.gap - moved)) continue;
+  prepareNearBounds(o_from_t);
+  for (std::size_t i = 0; i < near_pairs_.size(); ++i) {
+    if (policy.prunes(nearGapBound(i))) continue;
+    const LeafContact& candidate = near_pairs_[i];
     if (!policy.visit(leafPair(candidate.t_leaf, candidate.o_leaf))) break;
   }
   return policy.limit;

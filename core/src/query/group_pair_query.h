@@ -164,7 +164,9 @@ class GroupPairQuery {
   /// Places every target piece in the opponent frame for this query.
   void placeTargets(const Rigid& o_from_t);
   double sphereBound(const NodePair& p) const;
-  double nodeLowerBound(const NodePair& p, double max_distance);
+  /// GJK lower bound of a node pair's distance, exact up to max_distance unless the
+  /// pair is found within `within_distance` first (negative: never).
+  double nodeLowerBound(const NodePair& p, double max_distance, double within_distance);
   /// Largest displacement of a target point from pose `from` to pose `to`.
   double displacementBound(const Rigid& from, const Rigid& to) const;
   /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.
@@ -172,6 +174,12 @@ class GroupPairQuery {
   void contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                             std::vector<LeafContact>& out);
   bool nearCovers(const Rigid& o_from_t, double reach) const;
+  /// Refreshes near_pairs_ and their gaps from a full traversal at o_from_t.
+  void rebuildNear(const Rigid& o_from_t, double reach);
+  /// Prepares nearGapBound() for the pose o_from_t; the index it gets in near_poses_.
+  int prepareNearBounds(const Rigid& o_from_t);
+  /// Lower bound of near pair i's gap at the pose of the last prepareNearBounds().
+  double nearGapBound(std::size_t i) const;
   /// GJK on a leaf pair, the target piece placed by `o_from_piece`, warm-started from
   /// `cache` (the pair's entry of caches_ when null).
   LeafContact evaluate(const NodePair& p, const Rigid& o_from_piece, double max_distance,
@@ -208,6 +216,25 @@ class GroupPairQuery {
   /// near_pairs_' warm starts, in the same order: read in sequence, where the
   /// set-associative caches_ would be probed at random.
   std::vector<SimplexCache> near_caches_;
+  /// Per near pair, in the same order: its gap when last evaluated, at
+  /// near_poses_[pose], and its target leaf's sphere (group frame), which bounds how
+  /// much that gap can shrink since. Re-evaluating a pair refreshes its gap, so only
+  /// pairs near the threshold are evaluated again, however far the group moved.
+  struct NearGap {
+    Vec3 center = Vec3::Zero();
+    double radius = 0.0;
+    double gap = 0.0;
+    int pose = 0;
+  };
+  std::vector<NearGap> near_gaps_;
+  std::vector<Rigid> near_poses_;  ///< poses a near pair was last evaluated at
+  /// Per near_poses_ entry, for the current query: the rotation and translation change.
+  struct PoseChange {
+    Mat3 rotation;
+    Vec3 translation;
+    double spin;  ///< Frobenius norm of the rotation change
+  };
+  std::vector<PoseChange> near_changes_;
   /// contactsNear()'s last answer, valid while near_valid_ (every rebuild rewrites it).
   bool memo_valid_ = false;
   Rigid memo_pose_;

@@ -123,6 +123,25 @@ TEST_F(GjkCubes, MaxDistanceStopsEarlyWithAValidLowerBound) {
   EXPECT_NEAR(near.distance, 1.0, kTol);
 }
 
+TEST_F(GjkCubes, WithinDistanceStopsEarlyWithBothBounds) {
+  const Rigid b = pose(about(Vec3(1, 2, 3), 40), Vec3(2.5, 1.9, 1.7));
+  const GjkResult full = run(at(Vec3::Zero()), b);
+  ASSERT_EQ(full.status, GjkStatus::Separated);
+  GjkSettings settings;
+  settings.within_distance = 10.0 * full.distance;  // known at once from the start simplex
+  const GjkResult r = run(at(Vec3::Zero()), b, settings);
+  EXPECT_EQ(r.status, GjkStatus::WithinDistance);
+  EXPECT_LT(r.iterations, full.iterations);
+  EXPECT_LE(r.lower_bound, full.distance + kTol);
+  EXPECT_GE(r.distance, full.distance - kTol);
+  EXPECT_LE(r.distance, settings.within_distance);
+  // Closer than the true distance: GJK cannot stop early and converges as without it.
+  settings.within_distance = 0.5 * full.distance;
+  const GjkResult exact = run(at(Vec3::Zero()), b, settings);
+  EXPECT_EQ(exact.status, GjkStatus::Separated);
+  EXPECT_NEAR(exact.distance, full.distance, kTol);
+}
+
 TEST_F(GjkCubes, FarApartPairStopsAfterOneIterationBeyondMaxDistance) {
   GjkSettings settings;
   settings.max_distance = 1.0;

@@ -367,9 +367,48 @@ TEST_F(GroupPairQueryTest, ContactsNearAndItsTimeOfImpactEqualTraversalsAlongASl
   // Most steps reuse the pairs, and the comparison saw contacts.
   EXPECT_GT(reused, steps / 3);
   EXPECT_GT(with_contacts, steps / 4);
-  std::printf("[ group pair query ] contactsNear: %d of %d steps reused, %d with contacts; "
-              "time of impact from the pairs %d times, %d blocked\n",
-              reused, steps, with_contacts, toi_from_pairs, toi_blocked);
+  std::printf(
+      "[ group pair query ] contactsNear: %d of %d steps reused, %d with contacts; "
+      "time of impact from the pairs %d times, %d blocked\n",
+      reused, steps, with_contacts, toi_from_pairs, toi_blocked);
+}
+
+// A drifting, slowly turning target (a body pushed along a surface): the kept pairs
+// give the traversal's contacts, and once a pair was measured, only its own motion
+// since brings it back, so a second, near-identical pose re-measures only the pairs
+// within the threshold, however far the group drifted since the pairs were gathered.
+TEST_F(GroupPairQueryTest, ContactsNearMeasuresAgainOnlyPairsNearTheThreshold) {
+  GroupPairQuery near, plain;
+  near.bind(target_, opponent_);
+  plain.bind(target_, opponent_);
+  test::Rng rng(41);
+  const double threshold = 0.01, margin = 0.02;
+  const Mat3 turn = Eigen::AngleAxisd(0.002, Vec3(0.3, 1.0, -0.2).normalized()).toRotationMatrix();
+  int checked = 0, cheap = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run) {
+    Rigid pose = randomPose(rng, 0.6);
+    const Vec3 drift = 0.0015 * test::randomDirection(rng);
+    for (int k = 0; k < 12; ++k) {
+      SCOPED_TRACE(k);
+      pose.translation += drift;
+      pose.rotation = turn * pose.rotation;
+      std::vector<LeafContact> got, again, want;
+      near.contactsNear(pose, threshold, margin, got);
+      plain.contacts(pose, threshold, want);
+      ASSERT_EQ(got.size(), want.size());
+      // A nudge a thousand times smaller than a step.
+      const Rigid nudged{pose.rotation, pose.translation + 1e-6 * Vec3(1, -1, 1)};
+      near.contactsNear(nudged, threshold, margin, again);
+      if (near.counters().node_pairs > 0 || k == 0) continue;  // rebuilt: not this check
+      std::vector<LeafContact> close;
+      plain.contacts(nudged, threshold + 1e-5, close);
+      EXPECT_LE(near.counters().leaf_gjk, static_cast<int>(close.size()));
+      ++checked;
+      if (!close.empty()) ++cheap;
+    }
+  }
+  EXPECT_GT(checked, 10);
+  EXPECT_GT(cheap, 3);  // the check saw pairs in contact
 }
 
 TEST(PairCache, KeepsEntriesAndStaysBounded) {

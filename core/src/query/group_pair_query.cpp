@@ -141,7 +141,7 @@ void GroupPairQuery::bind(const GroupView& target, const GroupView& opponent) {
     caches_.clear();
     seed_ = LeafPair();
   }
-  if (!t_same || !o_same || t_moved || o_moved) known_ = near_valid_ = false;
+  if (!t_same || !o_same || t_moved || o_moved) known_ = near_valid_ = pending_.active = false;
   if (!t_same || t_moved) {
     updateGroupSphere();
     t_leaves_valid_ = false;
@@ -374,7 +374,13 @@ LeafContact GroupPairQuery::exactLeafDistance(const NodePair& p, double bound, b
 // and takes leaf pairs (`visit`, false to stop).
 template <class Policy>
 void GroupPairQuery::traverse(Policy& policy) {
-  heap_.clear();
+  seedTraversal(policy, heap_);
+  runTraversal(policy, heap_, -1);
+}
+
+template <class Policy>
+void GroupPairQuery::seedTraversal(Policy& policy, std::vector<NodePair>& heap) {
+  heap.clear();
   for (int ts = 0; ts < static_cast<int>(t_slots_.size()); ++ts) {
     for (int os = 0; os < static_cast<int>(o_slots_.size()); ++os) {
       NodePair root;
@@ -382,29 +388,34 @@ void GroupPairQuery::traverse(Policy& policy) {
       root.o_slot = os;
       root.bound = std::max(0.0, sphereBound(root));
       if (policy.prunes(root.bound) || !policy.admits(root)) continue;
-      heap_.push_back(root);
-      std::push_heap(heap_.begin(), heap_.end(), Farther());
+      heap.push_back(root);
+      std::push_heap(heap.begin(), heap.end(), Farther());
     }
   }
-  while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), Farther());
-    NodePair p = heap_.back();
-    heap_.pop_back();
+}
+
+template <class Policy>
+bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget) {
+  for (int taken = 0; !heap.empty(); ++taken) {
+    if (budget >= 0 && taken >= budget) return false;
+    std::pop_heap(heap.begin(), heap.end(), Farther());
+    NodePair p = heap.back();
+    heap.pop_back();
     if (policy.prunes(p.bound)) break;  // every pair left is at least as far
     ++counters_.node_pairs;
     const HullBvhNode& tn = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
     const HullBvhNode& on = o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node];
     if (tn.leaf() && on.leaf()) {
-      if (!policy.visit(p)) return;
+      if (!policy.visit(p)) break;
       continue;
     }
     if (!p.refined) {
       p.bound = std::max(p.bound, nodeLowerBound(p, policy.reach(), policy.splitWithin()));
       p.refined = true;
       if (policy.prunes(p.bound)) continue;
-      if (!heap_.empty() && p.bound > heap_.front().bound) {
-        heap_.push_back(p);
-        std::push_heap(heap_.begin(), heap_.end(), Farther());
+      if (!heap.empty() && p.bound > heap.front().bound) {
+        heap.push_back(p);
+        std::push_heap(heap.begin(), heap.end(), Farther());
         continue;
       }
     }
@@ -416,10 +427,12 @@ void GroupPairQuery::traverse(Policy& policy) {
       c.refined = false;
       c.bound = std::max(p.bound, sphereBound(c));
       if (policy.prunes(c.bound) || !policy.admits(c)) continue;
-      heap_.push_back(c);
-      std::push_heap(heap_.begin(), heap_.end(), Farther());
+      heap.push_back(c);
+      std::push_heap(heap.begin(), heap.end(), Farther());
     }
   }
+  heap.clear();
+  return true;
 }
 
 double GroupPairQuery::displacementBound(const Rigid& from, const Rigid& to) const {
@@ -558,37 +571,52 @@ void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, doubl
 void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                                           std::vector<LeafContact>& out) {
   out.clear();
+  const TraversalCounters ahead = advancePendingNear(o_from_t, threshold);
   if (!nearCovers(o_from_t, threshold)) {
+    pending_.active = false;
     rebuildNear(o_from_t, threshold + margin);
     for (const LeafContact& c : near_pairs_)  // already sorted
       if (c.gap <= threshold) out.push_back(c);
-    return;
+  } else {
+    counters_ = TraversalCounters();
+    placeTargets(o_from_t);
+    const int pose = prepareNearBounds(o_from_t);
+    for (std::size_t i = 0; i < near_pairs_.size(); ++i) {
+      if (nearGapBound(i) > threshold) continue;
+      const LeafContact& candidate = near_pairs_[i];
+      const NodePair p = leafPair(candidate.t_leaf, candidate.o_leaf);
+      bool beyond = false;
+      // Evaluated up to the set's reach: an exact gap there keeps the pair pruned for
+      // longer than the lower bound an early exit at the threshold would give.
+      const LeafContact c =
+          evaluate(p, o_from_piece_[p.t_slot], near_reach_, beyond, &near_caches_[i]);
+      near_gaps_[i].gap = c.gap;
+      near_gaps_[i].pose = pose;
+      if (!beyond && c.gap <= threshold) out.push_back(c);
+    }
+    sortContacts(out);
+    // A third of the slack used: the next rebuild starts here, spread over the calls
+    // while the rest lasts.
+    const double slack = near_reach_ - threshold;
+    if (!pending_.active && displacementBound(near_pose_, o_from_t) > slack / 3.0)
+      startPendingNear(o_from_t, threshold + margin);
   }
-  counters_ = TraversalCounters();
-  placeTargets(o_from_t);
-  const int pose = prepareNearBounds(o_from_t);
-  for (std::size_t i = 0; i < near_pairs_.size(); ++i) {
-    if (nearGapBound(i) > threshold) continue;
-    const LeafContact& candidate = near_pairs_[i];
-    const NodePair p = leafPair(candidate.t_leaf, candidate.o_leaf);
-    bool beyond = false;
-    // Evaluated up to the set's reach: an exact gap there keeps the pair pruned for
-    // longer than the lower bound an early exit at the threshold would give.
-    const LeafContact c =
-        evaluate(p, o_from_piece_[p.t_slot], near_reach_, beyond, &near_caches_[i]);
-    near_gaps_[i].gap = c.gap;
-    near_gaps_[i].pose = pose;
-    if (!beyond && c.gap <= threshold) out.push_back(c);
-  }
-  sortContacts(out);
+  counters_.ahead_node_pairs = ahead.node_pairs;
+  counters_.ahead_gjk = ahead.node_gjk + ahead.leaf_gjk;
+  counters_.ahead_installed = ahead.ahead_installed;
 }
 
 void GroupPairQuery::rebuildNear(const Rigid& o_from_t, double reach) {
   contacts(o_from_t, reach, near_pairs_);
+  expected_near_work_ = counters_.node_pairs;
+  installNear(o_from_t, reach);
+}
+
+void GroupPairQuery::installNear(const Rigid& pose, double reach) {
   near_valid_ = true;
-  near_pose_ = o_from_t;
+  near_pose_ = pose;
   near_reach_ = reach;
-  near_poses_.assign(1, o_from_t);
+  near_poses_.assign(1, pose);
   near_caches_.clear();
   near_gaps_.clear();
   for (const LeafContact& c : near_pairs_) {
@@ -598,6 +626,50 @@ void GroupPairQuery::rebuildNear(const Rigid& o_from_t, double reach) {
     near_caches_.push_back(cacheOf(p));
     near_gaps_.push_back({ts.group_from_piece * node.center, node.radius, c.gap, 0});
   }
+}
+
+void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
+  pending_.active = true;
+  pending_.pose = o_from_t;
+  pending_.reach = reach;
+  pending_.found.clear();
+  pending_.work = 0;
+  pending_.expected_work = expected_near_work_;
+  pending_.o_from_piece.resize(t_slots_.size());
+  for (std::size_t i = 0; i < t_slots_.size(); ++i)
+    pending_.o_from_piece[i] = o_from_t * t_slots_[i].group_from_piece;
+  // The traversal reads the placements from o_from_piece_: lend it the pending ones.
+  o_from_piece_.swap(pending_.o_from_piece);
+  ContactsPolicy policy{*this, reach, pending_.found};
+  seedTraversal(policy, pending_.heap);
+  o_from_piece_.swap(pending_.o_from_piece);
+}
+
+TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, double threshold) {
+  // Node pairs per call: a rebuild of a broad contact (hundreds of leaf pairs) spread
+  // over a few physics steps, each of which calls this several times.
+  if (!pending_.active) return {};
+  const int budget = std::max(64, pending_.expected_work / 8);
+  const TraversalCounters saved = counters_;
+  counters_ = TraversalCounters();
+  o_from_piece_.swap(pending_.o_from_piece);
+  ContactsPolicy policy{*this, pending_.reach, pending_.found};
+  const bool done = runTraversal(policy, pending_.heap, budget);
+  o_from_piece_.swap(pending_.o_from_piece);
+  const TraversalCounters work = counters_;
+  counters_ = saved;
+  pending_.work += work.node_pairs;
+  if (!done) return work;
+  expected_near_work_ = pending_.work;
+  pending_.active = false;
+  // Moved so far since it started that the new pairs would not cover this pose.
+  if (displacementBound(pending_.pose, o_from_t) + threshold > pending_.reach) return work;
+  sortContacts(pending_.found);
+  near_pairs_.swap(pending_.found);
+  installNear(pending_.pose, pending_.reach);
+  TraversalCounters installed = work;
+  installed.ahead_installed = true;
+  return installed;
 }
 
 int GroupPairQuery::prepareNearBounds(const Rigid& o_from_t) {

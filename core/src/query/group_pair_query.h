@@ -59,6 +59,10 @@ struct TraversalCounters {
   int leaf_gjk = 0;       ///< GJK runs on leaf pairs
   int refined = 0;        ///< leaf pairs measured on their real triangles
   bool shortcut = false;  ///< answered from the last distance without traversal
+  /// contactsNear(): node pairs and GJK runs of the rebuild run ahead of need.
+  int ahead_node_pairs = 0;
+  int ahead_gjk = 0;
+  bool ahead_installed = false;  ///< that rebuild finished and replaced the pairs
 };
 
 /// Per directed group pair; not thread-safe (one per pair and direction).
@@ -176,6 +180,13 @@ class GroupPairQuery {
   bool nearCovers(const Rigid& o_from_t, double reach) const;
   /// Refreshes near_pairs_ and their gaps from a full traversal at o_from_t.
   void rebuildNear(const Rigid& o_from_t, double reach);
+  /// near_pairs_ (sorted, measured at `pose`) become the pairs within `reach` there.
+  void installNear(const Rigid& pose, double reach);
+  /// The next rebuild, started at o_from_t ahead of need and run a little per call.
+  void startPendingNear(const Rigid& o_from_t, double reach);
+  /// Runs the pending rebuild for a while; once done, installs it if it covers
+  /// o_from_t within `threshold`. Returns the work it did.
+  TraversalCounters advancePendingNear(const Rigid& o_from_t, double threshold);
   /// Prepares nearGapBound() for the pose o_from_t; the index it gets in near_poses_.
   int prepareNearBounds(const Rigid& o_from_t);
   /// Lower bound of near pair i's gap at the pose of the last prepareNearBounds().
@@ -193,6 +204,12 @@ class GroupPairQuery {
   LeafContact exactLeafDistance(const NodePair& p, double bound, bool& beyond);
   template <class Policy>
   void traverse(Policy& policy);
+  /// traverse() in two parts: the root pairs into `heap`, then node pairs taken from
+  /// it, at most `budget` of them (negative: no limit); true once the traversal is done.
+  template <class Policy>
+  void seedTraversal(Policy& policy, std::vector<NodePair>& heap);
+  template <class Policy>
+  bool runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget);
   /// Lower bound of the distance at `o_from_t` from the last distance(), or -inf.
   double knownLowerBound(const Rigid& o_from_t) const;
 
@@ -235,6 +252,21 @@ class GroupPairQuery {
     double spin;  ///< Frobenius norm of the rotation change
   };
   std::vector<PoseChange> near_changes_;
+  /// A rebuild of the near pairs spread over calls, so that no call pays for a whole
+  /// traversal while the pairs still cover the motion: its pose, reach, queue,
+  /// placements and the pairs found so far.
+  struct PendingNear {
+    bool active = false;
+    Rigid pose;
+    double reach = 0.0;
+    std::vector<NodePair> heap;
+    std::vector<Rigid> o_from_piece;
+    std::vector<LeafContact> found;
+    int work = 0;           ///< node pairs taken so far
+    int expected_work = 0;  ///< node pairs the last rebuild took: sets the pace
+  };
+  PendingNear pending_;
+  int expected_near_work_ = 0;  ///< node pairs of the last rebuild
   /// contactsNear()'s last answer, valid while near_valid_ (every rebuild rewrites it).
   bool memo_valid_ = false;
   Rigid memo_pose_;

@@ -38,6 +38,9 @@ run triangle_scaling "$build/bench/triangle_scaling" --csv "$out/triangle_scalin
 cavity=(--scene cavity --headless --device "script:$root/demos/haptic_coupling/cavity_push.txt")
 run haptic_cavity "$build/demos/haptic_coupling" "${cavity[@]}" --seconds 12 \
   --json "$out/haptic_cavity.json"
+# The timing targets over ten such runs (one CSV row each; fails when a run misses).
+run haptic_periods bash -c '"$0" 10 "$1" > "$2"' "$root/bench/haptic_periods.sh" "$build" \
+  "$out/haptic_periods.csv"
 run haptic_cavity_lockstep "$build/demos/haptic_coupling" "${cavity[@]}" --lockstep \
   --json "$out/haptic_cavity_lockstep.json"
 if [[ "${SC_BENCH_SOAK:-0}" == 1 ]]; then

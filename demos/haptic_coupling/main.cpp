@@ -450,7 +450,7 @@ class Demo {
         "  \"haptic_period_p50_ms\": %.4f,\n  \"haptic_period_p99_ms\": %.4f,\n  "
         "\"haptic_period_max_ms\": %.4f,\n"
         "  \"physics_steps\": %ld,\n  \"physics_rate_hz\": %.1f,\n  \"physics_ms_per_step\": "
-        "%.4f,\n  \"physics_step_max_ms\": %.3f,\n"
+        "%.4f,\n  \"physics_step_max_ms\": %.3f,\n  \"physics_steps_over_period\": %ld,\n"
         "  \"gains\": {\"k_t\": %.1f, \"b_t\": %.2f, \"k_r\": %.4f, \"b_r\": %.5f, \"max_force\": "
         "%.2f, "
         "\"max_torque\": %.4f},\n"
@@ -479,8 +479,8 @@ class Demo {
         1e3 * periods_.percentile(0.5), 1e3 * periods_.percentile(0.99), 1e3 * periods_.max(),
         physics_count_.load(), elapsed_ > 0 ? double(physics_count_.load()) / elapsed_ : 0.0,
         physics_count_.load() ? 1e3 * step_seconds_ / double(physics_count_.load()) : 0.0,
-        1e3 * step_max_, g.linear_stiffness, g.linear_damping, g.angular_stiffness,
-        g.angular_damping, g.max_force, g.max_torque, passivity_.body_margin,
+        1e3 * step_max_, steps_over_period_, g.linear_stiffness, g.linear_damping,
+        g.angular_stiffness, g.angular_damping, g.max_force, g.max_torque, passivity_.body_margin,
         passivity_.required_device_damping, max_jump_, jump_bound, max_jump_ratio_, impacts_,
         max_impact_jump_, impact_bound, max_impact_ratio_, max_jump_any_, unchecked_samples_,
         max_coupling_force_, monitor_.generated(), monitor_.maxGenerated(), monitor_.bodyWork(),
@@ -658,6 +658,7 @@ class Demo {
     const double step = std::chrono::duration<double>(Clock::now() - t0).count();
     step_seconds_ += step;
     step_max_ = std::max(step_max_, step);
+    if (step > physics_dt_) ++steps_over_period_;
     max_depth_ = std::max(max_depth_.load(), world_->plugin().stats().max_depth);
     generated_ = monitor_.generated();
     const sc::bullet::BodyState body = sc::bullet::bodyStateOf(*tool_);
@@ -827,6 +828,7 @@ class Demo {
   double max_jump_any_ = 0.0;
   long non_finite_samples_ = 0;  ///< haptic samples with a non-finite body state or reaction
   long non_finite_steps_ = 0;    ///< physics steps with a non-finite body state or wrench
+  long steps_over_period_ = 0;   ///< physics steps that took longer than their period
   double max_kinetic_ = 0.0;     ///< the tool's largest kinetic energy [J]
   long rss_after_1s_kb_ = 0, rss_after_60s_kb_ = 0;  ///< 0 when the run is shorter
   double max_jump_ = 0.0, max_jump_ratio_ = 0.0, max_coupling_force_ = 0.0, step_seconds_ = 0.0,

@@ -571,7 +571,10 @@ void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, doubl
 void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                                           std::vector<LeafContact>& out) {
   out.clear();
-  const TraversalCounters ahead = advancePendingNear(o_from_t, threshold);
+  // The kept pairs no longer cover this pose: what is left of a rebuild started
+  // ahead is cheaper than a new one, when that still covers it.
+  const bool due = !nearCovers(o_from_t, threshold);
+  const TraversalCounters ahead = advancePendingNear(o_from_t, threshold, due);
   if (!nearCovers(o_from_t, threshold)) {
     pending_.active = false;
     rebuildNear(o_from_t, threshold + margin);
@@ -645,11 +648,17 @@ void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
   o_from_piece_.swap(pending_.o_from_piece);
 }
 
-TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, double threshold) {
-  // Node pairs per call: a rebuild of a broad contact (hundreds of leaf pairs) spread
-  // over a few physics steps, each of which calls this several times.
+TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, double threshold,
+                                                     bool finish) {
   if (!pending_.active) return {};
-  const int budget = std::max(64, pending_.expected_work / 8);
+  // Moved so far since it started that its pairs would not cover this pose.
+  if (displacementBound(pending_.pose, o_from_t) + threshold > pending_.reach) {
+    pending_.active = false;
+    return {};
+  }
+  // Node pairs per call: a rebuild of a broad contact (thousands of leaf pairs) spread
+  // over a few physics steps, each of which calls this several times.
+  const int budget = finish ? -1 : std::max(64, pending_.expected_work / 8);
   const TraversalCounters saved = counters_;
   counters_ = TraversalCounters();
   o_from_piece_.swap(pending_.o_from_piece);
@@ -662,8 +671,6 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
   if (!done) return work;
   expected_near_work_ = pending_.work;
   pending_.active = false;
-  // Moved so far since it started that the new pairs would not cover this pose.
-  if (displacementBound(pending_.pose, o_from_t) + threshold > pending_.reach) return work;
   sortContacts(pending_.found);
   near_pairs_.swap(pending_.found);
   installNear(pending_.pose, pending_.reach);

@@ -184,9 +184,10 @@ class GroupPairQuery {
   void installNear(const Rigid& pose, double reach);
   /// The next rebuild, started at o_from_t ahead of need and run a little per call.
   void startPendingNear(const Rigid& o_from_t, double reach);
-  /// Runs the pending rebuild for a while; once done, installs it if it covers
-  /// o_from_t within `threshold`. Returns the work it did.
-  TraversalCounters advancePendingNear(const Rigid& o_from_t, double threshold);
+  /// Runs the pending rebuild for a while (to its end when `finish`) and installs it
+  /// once done; drops it when it no longer covers o_from_t within `threshold`.
+  /// Returns the work it did.
+  TraversalCounters advancePendingNear(const Rigid& o_from_t, double threshold, bool finish);
   /// Prepares nearGapBound() for the pose o_from_t; the index it gets in near_poses_.
   int prepareNearBounds(const Rigid& o_from_t);
   /// Lower bound of near pair i's gap at the pose of the last prepareNearBounds().

@@ -36,9 +36,10 @@ BodySide bodySide(const btCollisionObjectWrapper* w);
 /// friction, impact, recovery) is shared among the body's contacts of the substep
 /// (Plugin::applyImpulses), the spring part is not.
 struct Impulse {
-  btVector3 linear = btVector3(0, 0, 0);    ///< spring part
-  btVector3 velocity = btVector3(0, 0, 0);  ///< velocity part
-  btVector3 angular = btVector3(0, 0, 0);
+  btVector3 linear = btVector3(0, 0, 0);            ///< spring part
+  btVector3 velocity = btVector3(0, 0, 0);          ///< velocity part
+  btVector3 angular = btVector3(0, 0, 0);           ///< torque impulse, spring part
+  btVector3 angular_velocity = btVector3(0, 0, 0);  ///< torque impulse, velocity part
   double depth = 0.0;
 };
 

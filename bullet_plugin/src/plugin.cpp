@@ -245,8 +245,9 @@ ModelPtr Plugin::primitiveModel(const btCollisionShape* shape) {
 }
 
 void Plugin::addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& linear,
-                        const btVector3& velocity, const btVector3& angular) {
-  impulses_.push_back(Impulse{body, lever, linear, velocity, angular});
+                        const btVector3& velocity, const btVector3& angular,
+                        const btVector3& angular_velocity) {
+  impulses_.push_back(Impulse{body, lever, linear, velocity, angular, angular_velocity});
 }
 
 void Plugin::beginStep() {
@@ -258,9 +259,10 @@ void Plugin::applyImpulses() {
   contact_counts_.clear();
   for (const Impulse& i : impulses_) ++contact_counts_[i.body];
   for (const Impulse& i : impulses_) {
-    const btVector3 total = i.linear + i.velocity / btScalar(contact_counts_[i.body]);
+    const btScalar share = btScalar(1) / btScalar(contact_counts_[i.body]);
+    const btVector3 total = i.linear + i.velocity * share;
     i.body->applyCentralImpulse(total);
-    i.body->applyTorqueImpulse(i.angular + i.lever.cross(total));
+    i.body->applyTorqueImpulse(i.angular + i.angular_velocity * share + i.lever.cross(total));
   }
   impulses_.clear();
 }

@@ -56,13 +56,16 @@ class Plugin {
   void attachWorld(bool attached) { world_attached_ = attached; }
   bool worldAttached() const { return world_attached_; }
   /// One contact's impulse on `body`, at `lever` from its centre of mass: the spring
-  /// part `linear`, the velocity part `velocity` (damping, friction), `angular`.
+  /// part `linear`, the velocity part `velocity` (damping, friction), and the torque
+  /// impulse's spring part `angular` and velocity part `angular_velocity` (damping).
   void addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& linear,
-                  const btVector3& velocity, const btVector3& angular);
+                  const btVector3& velocity, const btVector3& angular,
+                  const btVector3& angular_velocity);
   void beginStep();
-  /// Applies and clears the buffered impulses. A body's velocity parts are divided by
-  /// its number of contacts in the substep: summed at once (Jacobi), full parts from
-  /// several contacts would overshoot and flip the body's velocity every substep.
+  /// Applies and clears the buffered impulses. A body's velocity parts (linear and
+  /// angular) are divided by its number of contacts in the substep: summed at once
+  /// (Jacobi), full parts from several contacts would overshoot and flip the body's
+  /// velocity every substep.
   void applyImpulses();
 
   StepStats& stats() { return stats_; }
@@ -81,6 +84,7 @@ class Plugin {
     btVector3 linear;
     btVector3 velocity;
     btVector3 angular;
+    btVector3 angular_velocity;
   };
   struct CachedModel {
     ModelPtr model;

@@ -388,7 +388,8 @@ TEST_F(GroupPairQueryTest, ContactsNearMeasuresAgainOnlyPairsNearTheThreshold) {
   const double threshold = 0.01, margin = 0.02;
   const Mat3 turn = Eigen::AngleAxisd(0.002, Vec3(0.3, 1.0, -0.2).normalized()).toRotationMatrix();
   int checked = 0, cheap = 0;
-  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run) {
+  // Random walks until a few checks saw pairs in contact (at most 20 walks).
+  for (int run = 0; run < 20 && cheap < 4; ++run) {
     Rigid pose = randomPose(rng, 0.6);
     const Vec3 drift = 0.0015 * test::randomDirection(rng);
     for (int k = 0; k < 12; ++k) {
@@ -412,7 +413,7 @@ TEST_F(GroupPairQueryTest, ContactsNearMeasuresAgainOnlyPairsNearTheThreshold) {
     }
   }
   EXPECT_GT(checked, 10);
-  EXPECT_GT(cheap, 3);  // the check saw pairs in contact
+  EXPECT_GE(cheap, 4);  // the check saw pairs in contact
 }
 
 TEST(PairCache, KeepsEntriesAndStaysBounded) {

@@ -395,9 +395,12 @@ void GroupPairQuery::seedTraversal(Policy& policy, std::vector<NodePair>& heap) 
 }
 
 template <class Policy>
-bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget) {
+bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget,
+                                  double until) {
   for (int taken = 0; !heap.empty(); ++taken) {
     if (budget >= 0 && taken >= budget) return false;
+    const double front = heap.front().bound;
+    if (front >= until && !policy.prunes(front)) return false;
     std::pop_heap(heap.begin(), heap.end(), Farther());
     NodePair p = heap.back();
     heap.pop_back();
@@ -576,8 +579,10 @@ void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshol
   const bool due = !nearCovers(o_from_t, threshold);
   const TraversalCounters ahead = advancePendingNear(o_from_t, threshold, due);
   if (!nearCovers(o_from_t, threshold)) {
-    pending_.active = false;
-    rebuildNear(o_from_t, threshold + margin);
+    // Nothing gathered ahead covers it: a rebuild here, run as far as this pose needs
+    // and then on, a little per call, as one started ahead.
+    startPendingNear(o_from_t, threshold + margin);
+    counters_ = advancePendingNear(o_from_t, threshold, true);
     for (const LeafContact& c : near_pairs_)  // already sorted
       if (c.gap <= threshold) out.push_back(c);
   } else {
@@ -609,12 +614,6 @@ void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshol
   counters_.ahead_installed = ahead.ahead_installed;
 }
 
-void GroupPairQuery::rebuildNear(const Rigid& o_from_t, double reach) {
-  contacts(o_from_t, reach, near_pairs_);
-  expected_near_work_ = counters_.node_pairs;
-  installNear(o_from_t, reach);
-}
-
 void GroupPairQuery::installNear(const Rigid& pose, double reach) {
   near_valid_ = true;
   near_pose_ = pose;
@@ -638,6 +637,7 @@ void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
   pending_.found.clear();
   pending_.work = 0;
   pending_.expected_work = expected_near_work_;
+  pending_.last_pose = o_from_t;
   pending_.o_from_piece.resize(t_slots_.size());
   for (std::size_t i = 0; i < t_slots_.size(); ++i)
     pending_.o_from_piece[i] = o_from_t * t_slots_[i].group_from_piece;
@@ -656,27 +656,56 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
     pending_.active = false;
     return {};
   }
-  // Node pairs per call: a rebuild of a broad contact (thousands of leaf pairs) spread
-  // over a few physics steps, each of which calls this several times.
-  const int budget = finish ? -1 : std::max(64, pending_.expected_work / 8);
+  const int budget = finish ? -1 : pendingBudget(o_from_t, threshold);
+  // Due, it runs only as far as this pose and a few calls more need: the traversal
+  // takes node pairs nearest first, so every leaf pair nearer than its queue's front
+  // is among the pairs found (the pairs of a rebuild of that reach).
+  const double need = displacementBound(pending_.pose, o_from_t) + threshold;
+  const double until = finish ? need + 0.5 * (pending_.reach - need) : kInfinity;
+  pending_.last_pose = o_from_t;
   const TraversalCounters saved = counters_;
   counters_ = TraversalCounters();
   o_from_piece_.swap(pending_.o_from_piece);
   ContactsPolicy policy{*this, pending_.reach, pending_.found};
-  const bool done = runTraversal(policy, pending_.heap, budget);
+  const bool done = runTraversal(policy, pending_.heap, budget, until);
   o_from_piece_.swap(pending_.o_from_piece);
   const TraversalCounters work = counters_;
   counters_ = saved;
   pending_.work += work.node_pairs;
-  if (!done) return work;
+  if (!done && !finish) return work;
+  TraversalCounters installed = work;
+  installed.ahead_installed = true;
+  if (!done) {  // installed as far as it got; it goes on
+    near_pairs_ = pending_.found;
+    sortContacts(near_pairs_);
+    // A pair exactly at the front's bound may be still in the queue.
+    installNear(pending_.pose, std::nextafter(pending_.heap.front().bound, 0.0));
+    return installed;
+  }
   expected_near_work_ = pending_.work;
   pending_.active = false;
   sortContacts(pending_.found);
   near_pairs_.swap(pending_.found);
   installNear(pending_.pose, pending_.reach);
-  TraversalCounters installed = work;
-  installed.ahead_installed = true;
   return installed;
+}
+
+int GroupPairQuery::pendingBudget(const Rigid& o_from_t, double threshold) const {
+  // Node pairs per call: a rebuild of a broad contact (thousands of leaf pairs) spread
+  // over a few physics steps, each of which calls this several times...
+  const int base = std::max(64, pending_.expected_work / 8);
+  if (!near_valid_) return base;
+  // ...unless the kept pairs stop covering the target first. Pace the rest by the
+  // calls left at the last call's speed. A body approaching a broad contact finds
+  // many more pairs than the last rebuild did (11 node pairs, then 1,882, then 4,487
+  // as a bunny meets a floor): past half the expected work, as much again is assumed
+  // to remain.
+  const double step = displacementBound(pending_.last_pose, o_from_t);
+  if (!(step > 0.0)) return base;
+  const double room = near_reach_ - threshold - displacementBound(near_pose_, o_from_t);
+  const double calls_left = std::max(1.0, std::floor(room / step));
+  const int rest = std::max(pending_.expected_work - pending_.work, pending_.work);
+  return std::max(base, static_cast<int>(std::ceil(rest / calls_left)));
 }
 
 int GroupPairQuery::prepareNearBounds(const Rigid& o_from_t) {

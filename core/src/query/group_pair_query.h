@@ -62,7 +62,7 @@ struct TraversalCounters {
   /// contactsNear(): node pairs and GJK runs of the rebuild run ahead of need.
   int ahead_node_pairs = 0;
   int ahead_gjk = 0;
-  bool ahead_installed = false;  ///< that rebuild finished and replaced the pairs
+  bool ahead_installed = false;  ///< that rebuild replaced the pairs (done, or as far as due)
 };
 
 /// Per directed group pair; not thread-safe (one per pair and direction).
@@ -178,16 +178,17 @@ class GroupPairQuery {
   void contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                             std::vector<LeafContact>& out);
   bool nearCovers(const Rigid& o_from_t, double reach) const;
-  /// Refreshes near_pairs_ and their gaps from a full traversal at o_from_t.
-  void rebuildNear(const Rigid& o_from_t, double reach);
   /// near_pairs_ (sorted, measured at `pose`) become the pairs within `reach` there.
   void installNear(const Rigid& pose, double reach);
   /// The next rebuild, started at o_from_t ahead of need and run a little per call.
   void startPendingNear(const Rigid& o_from_t, double reach);
-  /// Runs the pending rebuild for a while (to its end when `finish`) and installs it
-  /// once done; drops it when it no longer covers o_from_t within `threshold`.
-  /// Returns the work it did.
+  /// Runs the pending rebuild for a while and installs it once done. With `finish`
+  /// (the kept pairs no longer cover o_from_t) it runs only as far as o_from_t needs
+  /// and installs what it found, going on afterwards. Dropped when it no longer
+  /// covers o_from_t within `threshold`. Returns the work it did.
   TraversalCounters advancePendingNear(const Rigid& o_from_t, double threshold, bool finish);
+  /// Node pairs the pending rebuild may take in this call (-1: no limit).
+  int pendingBudget(const Rigid& o_from_t, double threshold) const;
   /// Prepares nearGapBound() for the pose o_from_t; the index it gets in near_poses_.
   int prepareNearBounds(const Rigid& o_from_t);
   /// Lower bound of near pair i's gap at the pose of the last prepareNearBounds().
@@ -206,11 +207,13 @@ class GroupPairQuery {
   template <class Policy>
   void traverse(Policy& policy);
   /// traverse() in two parts: the root pairs into `heap`, then node pairs taken from
-  /// it, at most `budget` of them (negative: no limit); true once the traversal is done.
+  /// it, at most `budget` of them (negative: no limit) and only while the nearest
+  /// left is nearer than `until`; true once the traversal is done.
   template <class Policy>
   void seedTraversal(Policy& policy, std::vector<NodePair>& heap);
   template <class Policy>
-  bool runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget);
+  bool runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget,
+                    double until = kInfinity);
   /// Lower bound of the distance at `o_from_t` from the last distance(), or -inf.
   double knownLowerBound(const Rigid& o_from_t) const;
 
@@ -265,6 +268,7 @@ class GroupPairQuery {
     std::vector<LeafContact> found;
     int work = 0;           ///< node pairs taken so far
     int expected_work = 0;  ///< node pairs the last rebuild took: sets the pace
+    Rigid last_pose;        ///< pose of the last call that ran it (the target's speed)
   };
   PendingNear pending_;
   int expected_near_work_ = 0;  ///< node pairs of the last rebuild

@@ -416,6 +416,64 @@ TEST_F(GroupPairQueryTest, ContactsNearMeasuresAgainOnlyPairsNearTheThreshold) {
   EXPECT_GE(cheap, 4);  // the check saw pairs in contact
 }
 
+/// An n x n grid of `cell`-sized squares about the origin, two triangles each, at
+/// the heights z = bump * sin(40 x) cos(30 y).
+MeshData gridSoup(int n, double cell, double bump) {
+  MeshData grid;
+  const double o = -0.5 * n * cell;
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      const double x = o + i * cell, y = o + j * cell;
+      grid.vertices.emplace_back(x, y, bump * std::sin(40.0 * x) * std::cos(30.0 * y));
+    }
+  }
+  const auto at = [n](int i, int j) { return i * (n + 1) + j; };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      grid.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      grid.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+  return grid;
+}
+
+// A plate landing on a bumpy floor, then sliding along it, about a twelfth of the
+// margin per call: the pairs found grow from none to thousands as the plate lands, far
+// more than the last rebuild's work predicts. A rebuild run ahead is paced by the
+// motion, and when it is due unfinished, it runs only as far as the pose needs: no
+// call does half a rebuild's work (one did 61% of one when due rebuilds ran to their
+// end at a pace set by the last rebuild alone).
+TEST(GroupPairQueryPacing, ALandingPlateSpreadsItsRebuildsOverTheCalls) {
+  const ModelPtr floor = modelOf(ModelKind::TriangleSoup, {gridSoup(40, 0.025, 0.006)});
+  const ModelPtr plate = modelOf(ModelKind::TriangleSoup, {gridSoup(16, 0.025, 0.0)});
+  const Part t_part{plate.get(), Rigid(), 1}, o_part{floor.get(), Rigid(), 2};
+  const GroupView target{&t_part, 1, Placement()}, opponent{&o_part, 1, Placement()};
+  GroupPairQuery near, plain;
+  near.bind(target, opponent);
+  plain.bind(target, opponent);
+  const double threshold = 0.004, margin = 0.008;
+  const Vec3 drop(0.0, 0.0, -0.0007), slide(0.0005, 0.0004, 0.0);
+  Rigid pose{Mat3::Identity(), Vec3(0.0, 0.0, 0.03)};
+  int most = 0, largest_rebuild = 0, calls = 0;
+  std::vector<LeafContact> got, want;
+  for (; calls < 90; ++calls) {
+    SCOPED_TRACE(calls);
+    pose.translation += pose.translation.z() > 0.0085 ? drop : slide;
+    near.contactsNear(pose, threshold, margin, got);
+    most = std::max(most, near.counters().node_pairs + near.counters().ahead_node_pairs);
+    plain.contacts(pose, threshold, want);
+    ASSERT_EQ(got.size(), want.size());
+    plain.contacts(pose, threshold + margin, want);  // what a rebuild here takes
+    largest_rebuild = std::max(largest_rebuild, plain.counters().node_pairs);
+  }
+  EXPECT_GT(want.size(), 1000u);  // the plate did land on the floor
+  EXPECT_LT(most, largest_rebuild / 2);
+  std::printf(
+      "[ group pair query ] landing plate: most node pairs in a call %d, largest "
+      "rebuild %d, %zu pairs within the reach at the end\n",
+      most, largest_rebuild, want.size());
+}
+
 TEST(PairCache, KeepsEntriesAndStaysBounded) {
   PairCache cache;
   cache.at(7).count = 3;

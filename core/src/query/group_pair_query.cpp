@@ -636,13 +636,11 @@ void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
   pending_.reach = reach;
   pending_.found.clear();
   pending_.work = 0;
-  pending_.expected_work = expected_near_work_;
   pending_.last_pose = o_from_t;
-  pending_.o_from_piece.resize(t_slots_.size());
-  for (std::size_t i = 0; i < t_slots_.size(); ++i)
-    pending_.o_from_piece[i] = o_from_t * t_slots_[i].group_from_piece;
-  // The traversal reads the placements from o_from_piece_: lend it the pending ones.
+  // The traversal reads the placements from o_from_piece_: the pending ones are placed
+  // there and lent back to it on every call.
   o_from_piece_.swap(pending_.o_from_piece);
+  placeTargets(o_from_t);
   ContactsPolicy policy{*this, reach, pending_.found};
   seedTraversal(policy, pending_.heap);
   o_from_piece_.swap(pending_.o_from_piece);
@@ -651,8 +649,8 @@ void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
 TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, double threshold,
                                                      bool finish) {
   if (!pending_.active) return {};
-  // Moved so far since it started that its pairs would not cover this pose.
-  if (displacementBound(pending_.pose, o_from_t) + threshold > pending_.reach) {
+  const double need = displacementBound(pending_.pose, o_from_t) + threshold;
+  if (need > pending_.reach) {  // moved so far since it started that it cannot cover
     pending_.active = false;
     return {};
   }
@@ -660,7 +658,6 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
   // Due, it runs only as far as this pose and a few calls more need: the traversal
   // takes node pairs nearest first, so every leaf pair nearer than its queue's front
   // is among the pairs found (the pairs of a rebuild of that reach).
-  const double need = displacementBound(pending_.pose, o_from_t) + threshold;
   const double until = finish ? need + 0.5 * (pending_.reach - need) : kInfinity;
   pending_.last_pose = o_from_t;
   const TraversalCounters saved = counters_;
@@ -693,8 +690,7 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
 int GroupPairQuery::pendingBudget(const Rigid& o_from_t, double threshold) const {
   // Node pairs per call: a rebuild of a broad contact (thousands of leaf pairs) spread
   // over a few physics steps, each of which calls this several times...
-  const int base = std::max(64, pending_.expected_work / 8);
-  if (!near_valid_) return base;
+  const int base = std::max(64, expected_near_work_ / 8);
   // ...unless the kept pairs stop covering the target first. Pace the rest by the
   // calls left at the last call's speed. A body approaching a broad contact finds
   // many more pairs than the last rebuild did (11 node pairs, then 1,882, then 4,487
@@ -702,9 +698,10 @@ int GroupPairQuery::pendingBudget(const Rigid& o_from_t, double threshold) const
   // to remain.
   const double step = displacementBound(pending_.last_pose, o_from_t);
   if (!(step > 0.0)) return base;
+  // Kept pairs exist here: with none, every call is due and finishes the rebuild.
   const double room = near_reach_ - threshold - displacementBound(near_pose_, o_from_t);
   const double calls_left = std::max(1.0, std::floor(room / step));
-  const int rest = std::max(pending_.expected_work - pending_.work, pending_.work);
+  const int rest = std::max(expected_near_work_ - pending_.work, pending_.work);
   return std::max(base, static_cast<int>(std::ceil(rest / calls_left)));
 }
 

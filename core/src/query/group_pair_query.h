@@ -266,12 +266,11 @@ class GroupPairQuery {
     std::vector<NodePair> heap;
     std::vector<Rigid> o_from_piece;
     std::vector<LeafContact> found;
-    int work = 0;           ///< node pairs taken so far
-    int expected_work = 0;  ///< node pairs the last rebuild took: sets the pace
-    Rigid last_pose;        ///< pose of the last call that ran it (the target's speed)
+    int work = 0;     ///< node pairs taken so far
+    Rigid last_pose;  ///< pose of the last call that ran it (the target's speed)
   };
   PendingNear pending_;
-  int expected_near_work_ = 0;  ///< node pairs of the last rebuild
+  int expected_near_work_ = 0;  ///< node pairs of the last rebuild: sets the next one's pace
   /// contactsNear()'s last answer, valid while near_valid_ (every rebuild rewrites it).
   bool memo_valid_ = false;
   Rigid memo_pose_;

@@ -25,7 +25,6 @@ namespace {
 
 using sc::bullet::ContactModel;
 
-constexpr double kHz = 240.0;
 
 struct Options : sc::demo::HeadlessOptions {
   Options() { seconds = 10.0; }
@@ -33,6 +32,7 @@ struct Options : sc::demo::HeadlessOptions {
   ContactModel model = ContactModel::Potential;
   sc::RotationMode rotation = sc::bullet::defaultQuerySettings().rotation_mode;
   long steps = 0;  ///< when > 0, overrides seconds (soak runs: bench/soak.sh)
+  double hz = 240.0;  ///< physics rate (one substep per step)
   std::vector<std::string> meshes;
 };
 
@@ -133,7 +133,7 @@ class Demo {
 
   void step() {
     const auto t0 = std::chrono::steady_clock::now();
-    world_->stepSimulation(btScalar(1.0 / kHz), 1, btScalar(1.0 / kHz));
+    world_->stepSimulation(btScalar(1.0 / options_.hz), 1, btScalar(1.0 / options_.hz));
     step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++steps_;
     max_depth_ = std::max(max_depth_, world_->plugin().stats().max_depth);
@@ -142,7 +142,7 @@ class Demo {
     const btVector3 d = top.body->getCenterOfMassPosition() - top.start;
     max_drift_ = std::max(max_drift_, std::sqrt(double(d.x() * d.x() + d.z() * d.z())));
     // RMS velocity over the last second of a fixed run ("at rest").
-    if (options_.headless && steps_ > static_cast<long>((options_.seconds - 1.0) * kHz)) {
+    if (options_.headless && steps_ > static_cast<long>((options_.seconds - 1.0) * options_.hz)) {
       double s2 = 0;
       for (const Body& b : bodies_) s2 += double(b.body->getLinearVelocity().length2());
       rest_sum_ += s2 / double(bodies_.size());
@@ -160,7 +160,7 @@ class Demo {
     const double e = energy();
     if (steps_ == 1) start_energy_ = max_energy_ = e;
     max_energy_ = std::max(max_energy_, e);
-    if (steps_ == static_cast<long>(kHz)) rss_after_1s_kb_ = residentKb();
+    if (steps_ == static_cast<long>(options_.hz)) rss_after_1s_kb_ = residentKb();
   }
 
   void toggleModel() {
@@ -208,7 +208,7 @@ class Demo {
                   "model %s (m switches)   t = %.2f s   %.3f ms/step\n"
                   "top drift %.4f m   max penetration %.4f m",
                   options_.scene.c_str(), options_.model == ContactModel::Potential ? "potential" : "manifold",
-                  steps_ / kHz, steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, max_drift_, max_depth_);
+                  steps_ / options_.hz, steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, max_drift_, max_depth_);
     return buf;
   }
 
@@ -233,7 +233,7 @@ class Demo {
                   "  \"non_finite_steps\": %ld,\n  \"max_energy_rise_J\": %.6g,\n"
                   "  \"rss_after_1s_kB\": %ld,\n  \"rss_end_kB\": %ld,\n  \"peak_rss_kB\": %ld\n}\n",
                   options_.scene.c_str(), options_.model == ContactModel::Potential ? "potential" : "manifold",
-                  bodies_.size(), kHz, steps_, steps_ / kHz, max_drift_, max_depth_,
+                  bodies_.size(), options_.hz, steps_, steps_ / options_.hz, max_drift_, max_depth_,
                   rest_samples_ ? std::sqrt(rest_sum_ / rest_samples_) : 0.0, energy(),
                   steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, non_finite_steps_, max_energy_ - start_energy_,
                   rss_after_1s_kb_, residentKb(), std::max(peakResidentKb(), residentKb()));
@@ -370,6 +370,8 @@ bool parse(int argc, char** argv, Options& o) {
       o.model = v == "manifold" ? ContactModel::Manifold : ContactModel::Potential;
     } else if (a == "--rotation" && value(v)) {
       o.rotation = v == "mix" ? sc::RotationMode::Mix : v == "free" ? sc::RotationMode::Free : sc::RotationMode::Input;
+    } else if (a == "--hz" && value(v)) {
+      o.hz = std::atof(v.c_str());
     } else if (a == "--steps" && value(v)) {
       o.steps = std::atol(v.c_str());
     } else if (a == "--mesh" && value(v)) {
@@ -378,13 +380,13 @@ bool parse(int argc, char** argv, Options& o) {
     } else {
       std::fprintf(stderr,
                    "usage: %s [--scene tower|pyramid|massratio|meshes] [--model potential|manifold]\n"
-                   "          [--rotation input|mix|free]\n"
+                   "          [--rotation input|mix|free] [--hz RATE (240)]\n"
                    "          [--mesh BASE.off --mesh BODY.off...] [--headless [--seconds S | --steps N] [--png F] [--json F]]\n",
                    argv[0]);
       return false;
     }
   }
-  return o.seconds > 0.0 && std::isfinite(o.seconds);
+  return o.seconds > 0.0 && std::isfinite(o.seconds) && o.hz >= 1.0 && o.hz <= 1e5;
 }
 
 }  // namespace
@@ -392,13 +394,13 @@ bool parse(int argc, char** argv, Options& o) {
 int main(int argc, char** argv) {
   Options options;
   if (!parse(argc, argv, options)) return 2;
-  if (options.steps > 0) options.seconds = static_cast<double>(options.steps) / kHz;
+  if (options.steps > 0) options.seconds = static_cast<double>(options.steps) / options.hz;
   Demo demo(options);
   sc::demo::ViewerCallbacks cb;
   cb.collect = [&](std::vector<sc::demo::DrawItem>& items) { demo.collect(items); };
   cb.overlay = [&] { return demo.overlay(); };
   if (options.headless) {
-    const long steps = options.steps > 0 ? options.steps : std::lround(options.seconds * kHz);
+    const long steps = options.steps > 0 ? options.steps : std::lround(options.seconds * options.hz);
     for (long i = 0; i < steps; ++i) demo.step();
     const std::string metrics = demo.json();
     if (!sc::demo::emitMetrics(metrics, options.json)) return 1;
@@ -408,7 +410,9 @@ int main(int argc, char** argv) {
     return 0;
   }
   cb.step = [&] {
-    for (int i = 0; i < 4; ++i) demo.step();  // 240 Hz physics at about 60 frames per second
+    // The physics rate at about 60 frames per second (4 steps a frame at 240 Hz).
+    const long per_frame = std::max(1L, std::lround(options.hz / 60.0));
+    for (long i = 0; i < per_frame; ++i) demo.step();
   };
   cb.key = [&](unsigned char k) {
     if (k == 'm') demo.toggleModel();

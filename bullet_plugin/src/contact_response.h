@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The potential model's impulses for one direction of a pair (manual 5.9 with
-// damping and friction over one substep: explicit spring, implicit damping).
+// The one contact responder of every SmartCollision algorithm: a direction's contact
+// points (the support polygon of its result) become rows of Bullet's solver, soft in
+// the potential model (an implicit spring-damper, manual 5.9), rigid in the manifold
+// model; an impact is projected back to the entry side first; pairs first seen deep
+// get a bounded push.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
+
+#include <vector>
 
 #include "smartcollision/bullet/settings.h"
 #include "smartcollision/collision.h"
@@ -23,58 +28,95 @@ struct BodySide {
   double inv_mass = 0.0;
   /// Velocity of the material point at `p` (world); kinematic bodies included.
   btVector3 velocityAt(const btVector3& p) const;
-  btVector3 angularVelocity() const;
-  /// 1 / (e . I^-1 e), or 0 for an infinite moment.
-  double inverseMomentAbout(const btVector3& e) const;
 };
 
 /// The side of a Bullet object: its rigid body when dynamic, the world origin of its
 /// shape as the centre.
 BodySide bodySide(const btCollisionObjectWrapper* w);
 
-/// Linear parts act at the target's placement centre. The velocity part (damping,
-/// friction, impact, recovery) is shared among the body's contacts of the substep
-/// (Plugin::applyImpulses), the spring part is not.
-struct Impulse {
-  btVector3 linear = btVector3(0, 0, 0);            ///< spring part
-  btVector3 velocity = btVector3(0, 0, 0);          ///< velocity part
-  btVector3 angular = btVector3(0, 0, 0);           ///< torque impulse, spring part
-  btVector3 angular_velocity = btVector3(0, 0, 0);  ///< torque impulse, velocity part
-  double depth = 0.0;
+/// One row candidate of a direction: a point of the target at its current pose, the
+/// unit normal from the opponent towards the target, and the signed separation along
+/// it (< 0 penetrating). World coordinates.
+struct RowPoint {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+  double separation = 0.0;
+  bool exact = false;  ///< a corner of a convex piece, measured on a convex opponent
 };
 
-/// Impulse on the target T of `r` (penetrating) against the opponent O.
-/// F = -kT TPDV and tau = -kR RPDV plus damping of the approach speed, over one
-/// substep (never pulls; see springImpulse), plus Coulomb-capped viscous friction at
-/// the centre (`friction` = combined coefficient). An approach of more than `impact`
-/// per substep is stopped at once.
-Impulse potentialImpulse(const DirectedResult& r, const BodySide& t, const BodySide& o,
-                         const ContactSettings& c, double dt, double friction, double impact);
+/// Candidates kept per direction, deepest first (Bullet's manifold keeps 4 per pair:
+/// the deepest and the widest polygon among what it is given).
+constexpr int kMaxRowPoints = 16;
+
+/// True when a row of `points` touches, or its gap closes within `dt` at the
+/// approach speed of T (side `t`) towards O (side `o`) at the row's point.
+bool anyTouching(const std::vector<RowPoint>& points, const BodySide& t, const BodySide& o,
+                 double dt);
+
+/// Keeps the `kMaxRowPoints` deepest of `points` (in place).
+void keepDeepest(std::vector<RowPoint>& points);
+
+/// The pair's spring of the potential model, before it is spread over the rows.
+struct PairSpring {
+  double stiffness = 0.0;  ///< kT [N/m]: the user's, or m omega^2
+  bool user_stiffness = false;
+  double mass = 0.0;  ///< reduced mass of the pair [kg]
+  double damping_ratio = 1.0;
+  double omega = 0.0;  ///< 2 pi / contact period [rad/s]
+};
+
+/// The spring of a pair: kT = force_stiffness when set, else m omega^2 with
+/// omega = 2 pi / (contact_period_steps dt).
+PairSpring pairSpring(const BodySide& a, const BodySide& b, const ContactSettings& c, double dt);
+
+/// Projection of an impact: when the target approached the opponent by more than
+/// `tolerance` in this step and the result is penetrating, the target's share of
+/// -TPDV (by inverse mass) brings it back to the entry side at once; zero otherwise.
+/// The share counts only dynamic bodies; its approach speed is left to the rows.
+Vec3 impactProjection(const DirectedResult& r, const BodySide& t, const BodySide& o, double dt,
+                      double tolerance);
+
+/// Moves the points with the target by `shift`: separations grow by normal . shift.
+void shiftPoints(std::vector<RowPoint>& points, const Vec3& shift);
+
+/// The separation below which a point becomes a row: the manifold's threshold
+/// (speculative rows: a gap closing within the step is stopped at the surface), but
+/// 0 for a set stiffness of the potential model, a spring that acts on depth only
+/// (a speculative row would stop the body rigidly, whatever its spring).
+double rowThreshold(const PairSpring& spring, const PluginSettings& settings, double threshold);
+
+/// Adds the points below `threshold` to the manifold result; `dir` is the result's
+/// body (0 or 1) that is the target.
+void addRows(const std::vector<RowPoint>& points, int dir, double threshold,
+             btManifoldResult* result);
+
+/// Potential model: every point of `manifold` becomes a row of the spring-damper.
+/// Derived stiffness: a rigid velocity row whose depth recovers at the spring's rate
+/// (erp = h omega / (h omega + 2 zeta), cfm 0). Set stiffness: the implicit spring
+/// kT / rows (Bullet's erp = dt k / (dt k + c), cfm = 1 / (dt k + c)). Friction scaled.
+/// `rows`: the rows a set kT is spread over (a patch's).
+void softenRows(btPersistentManifold* manifold, const PairSpring& spring, double dt,
+                double friction_scale, int rows);
 
 /// The depth whose spring energy 1/2 k d^2 equals the recovery bound 1/2 m_red
-/// speed^2: a pair first seen within it can take the spring at once (speed / omega).
-double springReach(const BodySide& t, const BodySide& o, const ContactSettings& c, double dt,
-                   double speed);
+/// speed^2: a pair first seen within it can take the rows at once (speed / omega).
+double springReach(const PairSpring& s, double speed);
 
-/// Pushes T away from O along unit `u` so that they separate at depth / period, at
-/// most `speed`: relative kinetic energy at most 1/2 m_red speed^2.
-Impulse recoveryImpulse(const BodySide& t, const BodySide& o, const btVector3& u, double depth,
-                        double speed, double period);
+/// Velocity change pushing T away from O along unit `u` so that they separate at
+/// depth / period, at most `speed`: relative kinetic energy at most 1/2 m_red speed^2.
+btVector3 recoveryImpulse(const BodySide& t, const BodySide& o, const btVector3& u, double depth,
+                          double speed, double period);
 
 /// The same along the smallest overlap axis of their (tight) AABBs, the overlap as
 /// depth (pairs first seen intersecting, no depth from the core yet).
-Impulse recoveryImpulse(const BodySide& t, const BodySide& o, const btVector3& t_min,
-                        const btVector3& t_max, const btVector3& o_min, const btVector3& o_max,
-                        double speed, double period);
+btVector3 recoveryImpulse(const BodySide& t, const BodySide& o, const btVector3& t_min,
+                          const btVector3& t_max, const btVector3& o_min, const btVector3& o_max,
+                          double speed, double period);
 
-/// Bullet's contact point for a point `p_t` of a target with signed distance `depth`
-/// along `n` (from the opponent towards the target); `dir` is the btManifoldResult's
-/// body (0 or 1) that is the target.
-void addTargetPoint(const Vec3& n, const Vec3& p_t, double depth, int dir,
-                    btManifoldResult* result);
-
-/// Buffers in the plugin (or, without an ScDynamicsWorld, applies) the impulse of
-/// target `t` at its centre; wakes a sleeping `t` pressed by an active `o`.
-void deliver(Plugin& plugin, const BodySide& t, const BodySide& o, const Impulse& imp);
+/// Buffers in the plugin (or, without an ScDynamicsWorld, applies) the central
+/// impulse of a recovery and the projection of an impact of target `t`; wakes a
+/// sleeping `t` pressed by an active `o`.
+void deliver(Plugin& plugin, const BodySide& t, const BodySide& o, const btVector3& impulse,
+             const Vec3& projection);
 
 }  // namespace sc::bullet::detail

@@ -163,18 +163,26 @@ SceneSettings defaultQuerySettings() {
   return s;
 }
 
-Status validate(const PluginSettings& s) {
+Status validate(const ContactSettings& c) {
   auto bad = [](const char* what) { return Status(ErrorCode::InvalidArgument, what); };
-  if (s.model != ContactModel::Potential && s.model != ContactModel::Manifold)
-    return bad("unknown contact model");
-  const ContactSettings& c = s.contact;
   if (!finiteAtLeast(c.contact_period_steps, 1.0)) return bad("contact_period_steps must be >= 1");
   if (!finiteAtLeast(c.damping_ratio, 0.0)) return bad("damping_ratio must be >= 0");
   if (!finiteAtLeast(c.force_stiffness, 0.0)) return bad("force_stiffness must be >= 0");
   if (!finiteAtLeast(c.torque_stiffness, 0.0)) return bad("torque_stiffness must be >= 0");
   if (!finiteAtLeast(c.friction_scale, 0.0)) return bad("friction_scale must be >= 0");
+  // Bullet's solver works in single precision: dt k must stay a float.
+  if (c.force_stiffness > 1e30 || c.torque_stiffness > 1e30)
+    return bad("stiffness beyond single precision (> 1e30)");
+  return Status();
+}
+
+Status validate(const PluginSettings& s) {
+  if (s.model != ContactModel::Potential && s.model != ContactModel::Manifold)
+    return Status(ErrorCode::InvalidArgument, "unknown contact model");
+  Status c = validate(s.contact);
+  if (!c.ok()) return c;
   if (!(std::isfinite(s.recovery_speed) && s.recovery_speed > 0.0))
-    return bad("recovery_speed must be finite and > 0");
+    return Status(ErrorCode::InvalidArgument, "recovery_speed must be finite and > 0");
   return validate(s.query);
 }
 
@@ -210,8 +218,11 @@ Status Plugin::setSettings(const PluginSettings& settings) {
   return s;
 }
 
-void Plugin::setBodySettings(const btCollisionObject* body, const ContactSettings& settings) {
-  body_settings_[body] = settings;
+Status Plugin::setBodySettings(const btCollisionObject* body, const ContactSettings& settings) {
+  if (body == nullptr) return Status(ErrorCode::InvalidArgument, "null body");
+  Status s = validate(settings);
+  if (s.ok()) body_settings_[body] = settings;
+  return s;
 }
 
 void Plugin::clearBodySettings(const btCollisionObject* body) { body_settings_.erase(body); }
@@ -244,27 +255,35 @@ ModelPtr Plugin::primitiveModel(const btCollisionShape* shape) {
   return model;
 }
 
-void Plugin::addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& linear,
-                        const btVector3& velocity, const btVector3& angular,
-                        const btVector3& angular_velocity) {
-  impulses_.push_back(Impulse{body, lever, linear, velocity, angular, angular_velocity});
+void Plugin::addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& impulse) {
+  if (!impulse.isZero()) impulses_.push_back(Impulse{body, lever, impulse});
+}
+
+void Plugin::addProjection(btRigidBody* body, const btVector3& shift) {
+  if (shift.isZero()) return;
+  auto [it, fresh] = projections_.try_emplace(body, shift);
+  if (fresh) return;
+  btVector3& total = it->second;
+  const btVector3 along = total.normalized();
+  const btScalar reach = shift.dot(along);
+  total = along * std::max(total.length(), reach) + (shift - along * reach);
 }
 
 void Plugin::beginStep() {
   impulses_.clear();
+  projections_.clear();
   stats_ = StepStats();
 }
 
 void Plugin::applyImpulses() {
-  contact_counts_.clear();
-  for (const Impulse& i : impulses_) ++contact_counts_[i.body];
-  for (const Impulse& i : impulses_) {
-    const btScalar share = btScalar(1) / btScalar(contact_counts_[i.body]);
-    const btVector3 total = i.linear + i.velocity * share;
-    i.body->applyCentralImpulse(total);
-    i.body->applyTorqueImpulse(i.angular + i.angular_velocity * share + i.lever.cross(total));
-  }
+  for (const Impulse& i : impulses_) i.body->applyImpulse(i.impulse, i.lever);
   impulses_.clear();
+  for (auto& [body, shift] : projections_) {
+    btTransform x = body->getWorldTransform();
+    x.setOrigin(x.getOrigin() + shift);
+    body->setWorldTransform(x);
+  }
+  projections_.clear();
 }
 
 btCollisionAlgorithmCreateFunc* Plugin::contactCreateFunc() const {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <utility>
 
+#include "contact_clusters.h"
 #include "contact_response.h"
 #include "smartcollision/bullet/plugin.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
@@ -21,6 +22,8 @@ constexpr double kTwoPi = 6.283185307179586;
 btVector3 toBt(const Vec3& v) {
   return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
 }
+
+Vec3 toVec(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
 
 ModelPtr modelOf(Plugin& plugin, const btCollisionShape* shape) {
   if (shape->getShapeType() == kShapeType)
@@ -111,47 +114,105 @@ double reduced(double a, double b) {
   return std::max(a, b);
 }
 
-/// Bullet's contact point of a direction whose target is the result's body `dir`:
-/// the point on body 1 and the normal from body 1 towards body 0, as
-/// btManifoldResult expects.
-void addPoint(const DirectedResult& r, int dir, double depth, btManifoldResult* result) {
-  detail::addTargetPoint(r.normal, r.point_on_opponent + depth * r.normal, depth, dir, result);
+/// A face plane of a piece in world coordinates: outward unit normal, offset.
+struct WorldPlane {
+  Vec3 normal = Vec3::UnitY();
+  double offset = 0.0;
+  double distance(const Vec3& p) const { return normal.dot(p) - offset; }
+};
+
+/// The reference face of a convex piece O for a convex set of points (T's corners,
+/// world): the face plane along whose normal the points penetrate least (the
+/// separating-axis test over O's face normals, as box-box clipping chooses it).
+/// Stacked boxes of one size read the face below, not a side whose plane a corner
+/// also touches; the core's normal of the pair plays no part (an edge-edge normal
+/// or a face diagonal reported as an edge would tilt every row).
+WorldPlane referenceFace(const Piece& piece, const Rigid& world_from_piece,
+                         const std::vector<Vec3>& points) {
+  const MeshData& mesh = piece.mesh();
+  WorldPlane best;
+  double best_gap = -kInfinity;
+  for (const Tri& t : mesh.triangles) {
+    const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3 n = (mesh.vertices[static_cast<std::size_t>(t[1])] - a)
+                       .cross(mesh.vertices[static_cast<std::size_t>(t[2])] - a);
+    const double len = n.norm();
+    if (!(len > 0.0)) continue;
+    WorldPlane plane;
+    plane.normal = world_from_piece.rotation * (n / len);
+    plane.offset = plane.normal.dot(world_from_piece * a);
+    double gap = kInfinity;
+    for (const Vec3& p : points) gap = std::min(gap, plane.distance(p));
+    if (gap > best_gap) {
+      best_gap = gap;
+      best = plane;
+    }
+  }
+  return best;
 }
 
-/// The target's contact face (or edge) corners as extra manifold points: one closest
-/// pair per direction would leave a resting box on one corner. A convex piece gives
-/// every vertex within the threshold (its whole contact face, not just the reported
-/// triangle, so a box rests on four corners); a non-convex one its contact triangle's
-/// or edge's corners. Their depth is taken against the opponent's contact plane
-/// (through its contact point, normal n), which is the opponent's surface only when
-/// its contact feature is a face: otherwise (a tilted box's corner on a face below)
-/// the corners of the face would all read touching and hold the tilt, so only the
-/// direction whose opponent shows a face adds corners. A corner beyond the edge of
-/// that face is counted as supported (an approximation).
-void addFeaturePoints(const DirectedResult& r, const Side& target, int dir, double threshold,
-                      btManifoldResult* result) {
-  if (r.opponent_feature.type != FeatureType::Face) return;
-  const Feature& f = r.target_feature;
-  const Model* model = target.part.model;
-  if (r.target_piece < 0 || r.target_piece >= static_cast<int>(model->pieces().size())) return;
-  const Piece& piece = *model->pieces()[static_cast<std::size_t>(r.target_piece)];
+/// Signed distance of `p` from a convex piece: the largest over its face planes
+/// (< 0 inside).
+double convexSeparation(const Piece& piece, const Rigid& world_from_piece, const Vec3& p) {
   const MeshData& mesh = piece.mesh();
-  const Rigid world_from_t = target.view.placement.worldFromLocal();
-  auto add = [&](int vi) {
-    // On the surface of a rounded target: its core corner, radius towards O.
-    const Vec3 p =
-        world_from_t * mesh.vertices[static_cast<std::size_t>(vi)] - target.radius * r.normal;
-    const double depth = r.normal.dot(p - r.point_on_opponent);
-    if (depth < threshold) detail::addTargetPoint(r.normal, p, depth, dir, result);
-  };
-  if (piece.stats().convex) {
-    for (int vi = 0; vi < static_cast<int>(mesh.vertices.size()); ++vi) add(vi);
+  const Vec3 q = world_from_piece.inverse() * p;
+  double best = -kInfinity;
+  for (const Tri& t : mesh.triangles) {
+    const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3 n = (mesh.vertices[static_cast<std::size_t>(t[1])] - a)
+                       .cross(mesh.vertices[static_cast<std::size_t>(t[2])] - a);
+    const double len = n.norm();
+    if (len > 0.0) best = std::max(best, n.dot(q - a) / len);
+  }
+  return best;
+}
+
+/// The side's model is one convex piece (a box, a hull, a primitive's core).
+bool wholeConvex(const Side& s) {
+  const auto& pieces = s.part.model->pieces();
+  return pieces.size() == 1 && pieces[0]->stats().convex;
+}
+
+const Piece* pieceOf(const Side& s, int index) {
+  const auto& pieces = s.part.model->pieces();
+  if (index < 0 || index >= static_cast<int>(pieces.size())) return nullptr;
+  return pieces[static_cast<std::size_t>(index)].get();
+}
+
+/// The support polygon of a convex target piece: its corners (at T's current pose
+/// moved by `shift`) within `threshold` of the opponent. Against a convex opponent
+/// piece the rows share its reference face (referenceFace) and a corner counts only
+/// within the threshold of the piece (a tilted box's corner on a face below leaves
+/// the face's other corners out; corners past the face's edges drop). Against a
+/// non-convex piece only a face feature's plane (through its contact point, normal
+/// n) is the opponent's surface.
+void addSupportCorners(const DirectedResult& r, const Side& t, const Side& o, const Vec3& shift,
+                       double threshold, std::vector<Vec3>& corners,
+                       std::vector<detail::RowPoint>& points) {
+  const Piece* tp = pieceOf(t, r.target_piece);
+  if (tp == nullptr || !wholeConvex(t)) return;
+  const Piece* op = pieceOf(o, r.opponent_piece);
+  // A piece of a decomposed model has virtual faces: no support plane of the solid.
+  const bool convex_opponent = op != nullptr && wholeConvex(o) && o.radius == 0.0 &&
+                               op->kind() == ModelKind::ClosedPolyhedron;
+  const Rigid world_from_t = t.view.placement.worldFromLocal();
+  corners.clear();
+  for (const Vec3& v : tp->mesh().vertices)
+    corners.push_back(world_from_t * v - t.radius * r.normal + shift);
+  if (!convex_opponent || t.radius > 0.0) {  // a rounded target's core is no polytope
+    if (r.opponent_feature.type != FeatureType::Face) return;
+    const WorldPlane face{r.normal, r.normal.dot(r.point_on_opponent)};
+    for (const Vec3& p : corners)
+      if (face.distance(p) < threshold) points.push_back({p, face.normal, face.distance(p)});
     return;
   }
-  if (f.type == FeatureType::Vertex) return;
-  for (int k = 0; k < f.count(); ++k)
-    if (f.vertices[k] >= 0 && f.vertices[k] < static_cast<int>(mesh.vertices.size()))
-      add(f.vertices[k]);
+  const Rigid world_from_o = o.view.placement.worldFromLocal();
+  const WorldPlane face = referenceFace(*op, world_from_o, corners);
+  for (const Vec3& p : corners) {
+    const double sep = face.distance(p);
+    if (sep < threshold && convexSeparation(*op, world_from_o, p) < threshold)
+      points.push_back({p, face.normal, sep, true});
+  }
 }
 
 /// Smallest-overlap axis of two AABBs as a manifold point (first-seen intersections).
@@ -203,13 +264,116 @@ void reportClosestPoints(const DirectedResult out[2], const Side sides[2], bool 
   const double threshold = double(result->m_closestPointDistanceThreshold);
   for (int dir = 0; dir < 2; ++dir) {
     if (out[dir].code == ErrorCode::Ok && out[dir].distance <= threshold) {
-      addPoint(out[dir], swapped ? 1 - dir : dir, out[dir].distance, result);
+      const DirectedResult& r = out[dir];
+      const detail::RowPoint p{r.point_on_opponent + r.distance * r.normal, r.normal, r.distance};
+      detail::addRows({p}, swapped ? 1 - dir : dir, kInfinity, result);
       return;  // one point per query, as Bullet's convex algorithms report
     }
   }
   if (out[0].code == ErrorCode::InvalidInitialTransformation ||
       out[1].code == ErrorCode::InvalidInitialTransformation)
     addOverlapPoint(sides[swapped ? 1 : 0], sides[swapped ? 0 : 1], result);
+}
+
+/// What the direction's response works with, owned by the algorithm.
+struct DirectionState {
+  Plugin& plugin;
+  PairTracker& tracker;
+  bool* spring_on;
+  bool* in_contact;  ///< per direction: penetrating in the last step
+  std::vector<detail::RowPoint>& points;
+  std::vector<ContactPoint>& contacts;
+  std::vector<Vec3>& corners;
+  double dt;
+};
+
+/// The direction's row points: the result's contact carried to the current pose, the
+/// support polygon of a convex target, the core's contacts of a non-convex one.
+void gatherPoints(const DirectedResult& r, int dir, const Side& t, const Side& o, const Vec3& shift,
+                  double threshold, double tolerance, DirectionState& d) {
+  addSupportCorners(r, t, o, shift, threshold, d.corners, d.points);
+  const std::size_t exact = d.points.size();  // corner rows measured on a convex piece
+  if (!wholeConvex(t)) {
+    // Non-convex: the core's contacts within the threshold, each a leaf pair.
+    d.tracker.contactPoints(dir, threshold, d.contacts);
+    // Rounded sides: the core measured their cores (inflate() for the result).
+    const double rr = t.radius + o.radius;
+    for (const ContactPoint& c : d.contacts)
+      d.points.push_back({c.point_on_target - t.radius * c.normal + shift, c.normal,
+                          c.separation - rr + c.normal.dot(shift)});
+  }
+  // The result's own point (under the opponent's contact point by the depth) when
+  // nothing else bears: in Mix and Free its depth is that of the turned contact
+  // pose, which the corners measure at the current pose instead.
+  if (d.points.empty())
+    d.points.push_back({r.point_on_opponent + r.distance * r.normal + shift, r.normal,
+                        r.distance + r.normal.dot(shift)});
+  // No row measured against a plane deeper than the pair's translational depth plus
+  // the tolerance (a core contact's plane may lie beyond the overlap and push too
+  // hard). Only in Input: Mix's and Free's TPDV is shorter, the rest is turned.
+  if (d.plugin.settings().query.rotation_mode == RotationMode::Input) {
+    const double floor = -(r.penetrating() ? r.tpdv.norm() : 0.0) - tolerance;
+    for (std::size_t i = exact; i < d.points.size(); ++i)
+      d.points[i].separation = std::max(d.points[i].separation, floor);
+  }
+  if (detail::anyTouching(d.points, t.body, o.body, d.dt)) ++d.plugin.stats().touching;
+}
+
+/// A direction's response: a recovery push, or its row points (after the projection
+/// of an impact) into `d.points`.
+void respond(const DirectedResult& r, int dir, const Side sides[2], DirectionState& d,
+             const detail::PairSpring& spring, const ContactSettings& contact, double tolerance,
+             double dt, double threshold) {
+  const Side& t = sides[dir];
+  const Side& o = sides[1 - dir];
+  const PluginSettings& ps = d.plugin.settings();
+  StepStats& stats = d.plugin.stats();
+  const double period = contact.contact_period_steps * dt;  // recovery time scale
+  if (r.code == ErrorCode::InvalidInitialTransformation) {
+    ++stats.recovering;
+    detail::deliver(d.plugin, t.body, o.body,
+                    detail::recoveryImpulse(t.body, o.body, t.aabb_min, t.aabb_max, o.aabb_min,
+                                            o.aabb_max, ps.recovery_speed, period),
+                    Vec3::Zero());
+    return;
+  }
+  if (r.code != ErrorCode::Ok) return;
+  if (r.penetrating() && r.tpdv.dot(r.normal) > 0.0) {
+    // A depth whose TPDV points out of the opponent is not one (seen from the core
+    // when tracking starts within the tolerance of touching): start over.
+    d.tracker.forget(dir);
+    return;
+  }
+  // The rows take over once the pair was seen apart, or at once when the first depth
+  // is small enough that its spring energy fits the recovery bound.
+  const double depth = r.tpdv.norm();
+  if (!r.penetrating() || depth <= detail::springReach(spring, ps.recovery_speed))
+    d.spring_on[dir] = true;
+  if (r.penetrating()) {
+    ++stats.penetrating;
+    stats.max_depth = std::max(stats.max_depth, depth);
+    stats.max_rotation = std::max(stats.max_rotation, r.rpdv.norm());
+    if (!d.spring_on[dir]) {
+      ++stats.recovering;
+      detail::deliver(
+          d.plugin, t.body, o.body,
+          detail::recoveryImpulse(t.body, o.body, toBt(r.normal), depth, ps.recovery_speed, period),
+          Vec3::Zero());
+      return;
+    }
+  }
+  // Only a fresh impact is projected: a pair already in contact is the rows' to hold
+  // (a soft row lets a pressed body approach; that is its spring, not an impact).
+  const bool fresh = !d.in_contact[dir];
+  d.in_contact[dir] = r.penetrating();
+  if (!(r.distance < threshold)) return;
+  const Vec3 shift =
+      fresh ? detail::impactProjection(r, t.body, o.body, dt, tolerance) : Vec3::Zero();
+  if (!shift.isZero()) {
+    ++stats.projected;
+    detail::deliver(d.plugin, t.body, o.body, btVector3(0, 0, 0), shift);
+  }
+  gatherPoints(r, dir, t, o, shift, threshold, tolerance, d);
 }
 
 }  // namespace
@@ -229,10 +393,40 @@ ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructio
 
 ScCollisionAlgorithm::~ScCollisionAlgorithm() {
   if (manifold_ != nullptr) m_dispatcher->releaseManifold(manifold_);
+  for (btPersistentManifold* m : manifolds_)
+    if (m != nullptr) m_dispatcher->releaseManifold(m);
 }
 
 void ScCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  if (manifold_ != nullptr && !closest_points_) manifolds.push_back(manifold_);
+  for (btPersistentManifold* m : manifolds_)
+    if (m != nullptr) manifolds.push_back(m);
+}
+
+btPersistentManifold* ScCollisionAlgorithm::manifoldFor(const Vec3& normal,
+                                                        bool taken[kManifolds]) {
+  static_assert(kManifolds == detail::kMaxClusters);
+  int best = -1;
+  double best_cos = detail::kClusterCos;
+  for (int i = 0; i < kManifolds; ++i) {  // the manifold that held this patch
+    btPersistentManifold* m = manifolds_[i];
+    if (taken[i] || m == nullptr || m->getNumContacts() == 0) continue;
+    const double c = toVec(m->getContactPoint(0).m_normalWorldOnB).dot(normal);
+    if (c >= best_cos) {
+      best_cos = c;
+      best = i;
+    }
+  }
+  for (int i = 0; i < kManifolds && best < 0; ++i)  // else an empty one
+    if (!taken[i] && (manifolds_[i] == nullptr || manifolds_[i]->getNumContacts() == 0)) best = i;
+  for (int i = 0; i < kManifolds && best < 0; ++i)  // else any left (its old patch is gone)
+    if (!taken[i]) best = i;
+  taken[best] = true;
+  btPersistentManifold*& m = manifolds_[best];
+  if (m == nullptr) m = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
+  if (m->getNumContacts() > 0 && toVec(m->getContactPoint(0).m_normalWorldOnB).dot(normal) <
+                                     detail::kClusterCos)
+    m->clearManifold();
+  return m;
 }
 
 void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
@@ -263,66 +457,55 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
     return;
   }
 
+  const double dt = double(info.m_timeStep);
+  const detail::PairSpring spring = detail::pairSpring(sides[0].body, sides[1].body, contact, dt);
   StepStats& stats = plugin_->stats();
   ++stats.pairs;
-  const double dt = double(info.m_timeStep);
-  const double period = contact.contact_period_steps * dt;  // recovery time scale
-  const bool potential = ps.model == ContactModel::Potential;
-  const double friction = double(objects_[0]->getFriction() * objects_[1]->getFriction());
-  bool any_point = false;
-  if (!potential) {
-    if (manifold_ == nullptr) manifold_ = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
-    result->setPersistentManifold(manifold_);
-  } else if (manifold_ != nullptr) {
-    manifold_->clearManifold();  // switched from the manifold model: no double response
-  }
+  const double threshold = double(
+      std::min(objects_[0]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
+               objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
+  const double row_threshold = detail::rowThreshold(spring, ps, threshold);
+  const int projected_before = stats.projected;
+  DirectionState state{*plugin_, tracker_, spring_on_, in_contact_, points_, contacts_, corners_, dt};
+  candidates_.clear();
   for (int dir = 0; dir < 2; ++dir) {
-    const DirectedResult& r = out[dir];
-    const Side& t = sides[dir];
-    const Side& o = sides[1 - dir];
-    detail::Impulse imp;
-    if (r.code == ErrorCode::InvalidInitialTransformation) {
-      ++stats.recovering;
-      imp = detail::recoveryImpulse(t.body, o.body, t.aabb_min, t.aabb_max, o.aabb_min, o.aabb_max,
-                                    ps.recovery_speed, period);
-    } else if (r.code == ErrorCode::Ok) {
-      if (r.penetrating() && r.tpdv.dot(r.normal) > 0.0) {
-        // A depth whose TPDV points out of the opponent is not one (seen from the
-        // core when tracking starts within the tolerance of touching): start over.
-        tracker_.forget(dir);
-        continue;
-      }
-      // The spring takes over once the pair was seen apart, or at once when the first
-      // depth is small enough that its spring energy fits the recovery bound.
-      if (!r.penetrating() || r.tpdv.norm() <= detail::springReach(t.body, o.body, contact, dt,
-                                                                   ps.recovery_speed))
-        spring_on_[dir] = true;
-      if (r.penetrating()) {
-        ++stats.penetrating;
-        stats.max_depth = std::max(stats.max_depth, r.tpdv.norm());
-        stats.max_rotation = std::max(stats.max_rotation, r.rpdv.norm());
-      }
-      const double threshold = potential ? 0.0 : double(manifold_->getContactBreakingThreshold());
-      if (r.penetrating() && !spring_on_[dir]) {
-        ++stats.recovering;
-        imp = detail::recoveryImpulse(t.body, o.body, toBt(r.normal), r.tpdv.norm(),
-                                      ps.recovery_speed, period);
-      } else if (!potential && r.distance < threshold) {
-        addPoint(r, swapped ? 1 - dir : dir, r.distance, result);
-        addFeaturePoints(r, t, swapped ? 1 - dir : dir, threshold, result);
-        any_point = true;
-      } else if (potential && r.penetrating()) {
-        imp = detail::potentialImpulse(r, t.body, o.body, contact, dt, friction, query.tolerance);
-      }
+    points_.clear();
+    respond(out[dir], dir, sides, state, spring, contact, query.tolerance, dt, threshold);
+    const bool target_is_0 = (swapped ? 1 - dir : dir) == 0;  // in the result's order
+    for (const detail::RowPoint& p : points_) {
+      if (!(p.separation < row_threshold)) continue;
+      // Bullet's frame: the normal from the result's body 1 to its body 0, the point
+      // on body 1.
+      candidates_.push_back(target_is_0
+                                ? detail::RowCandidate{p.point - p.separation * p.normal, p.normal,
+                                                       p.separation, p.exact}
+                                : detail::RowCandidate{p.point, -p.normal, p.separation, p.exact});
     }
-    detail::deliver(*plugin_, t.body, o.body, imp);
   }
-  if (!potential) {
-    if (any_point)
-      result->refreshContactPoints();
-    else
-      manifold_->clearManifold();
+  stats.dropped_rows += detail::buildClusters(candidates_, labels_, clusters_);
+  bool taken[kManifolds] = {false, false, false, false};
+  int rows = 0;
+  for (const detail::ContactCluster& c : clusters_) {
+    btPersistentManifold* m = manifoldFor(c.normal, taken);
+    result->setPersistentManifold(m);
+    for (int k = 0; k < c.point_count; ++k) {
+      const detail::RowCandidate& p = c.points[static_cast<std::size_t>(k)];
+      result->addContactPoint(toBt(p.normal), toBt(p.on_b), btScalar(p.separation));
+    }
+    result->refreshContactPoints();
+    rows += m->getNumContacts();
   }
+  for (int i = 0; i < kManifolds; ++i)
+    if (!taken[i] && manifolds_[i] != nullptr) manifolds_[i]->clearManifold();
+  stats.rows += rows;
+  // An impact's rows stay rigid for the step: they take the approach speed at once
+  // (restitution 0), where a soft row would let a fast body on through.
+  if (ps.model != ContactModel::Potential || stats.projected != projected_before) return;
+  // A set kT is each patch's: spread over that patch's rows.
+  for (int i = 0; i < kManifolds; ++i)
+    if (taken[i])
+      detail::softenRows(manifolds_[i], spring, dt, contact.friction_scale,
+                         manifolds_[i]->getNumContacts());
 }
 
 }  // namespace sc::bullet

@@ -62,14 +62,14 @@ DirectedResult planeResult(const WorldPlane& plane, const btTransform& t,
   return r;
 }
 
-/// Every hull corner closer to the plane than `threshold`, as manifold points.
-void addCornerPoints(const WorldPlane& plane, const btTransform& t,
-                     const std::vector<btVector3>& hull, double threshold, int dir,
-                     btManifoldResult* result) {
+/// Every hull corner (moved by `shift`) closer to the plane than `threshold`.
+void cornerPoints(const WorldPlane& plane, const btTransform& t, const std::vector<btVector3>& hull,
+                  const Vec3& shift, double threshold, std::vector<detail::RowPoint>& points) {
+  const Vec3 n = toVec(plane.normal);
   for (const btVector3& v : hull) {
-    const btVector3 w = t(v);
-    const double s = plane.signedDistance(w);
-    if (s < threshold) detail::addTargetPoint(toVec(plane.normal), toVec(w), s, dir, result);
+    const Vec3 w = toVec(t(v)) + shift;
+    const double s = double(plane.normal.dot(t(v))) - plane.offset + n.dot(shift);
+    if (s < threshold) points.push_back({w, n, s});
   }
 }
 
@@ -115,7 +115,7 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   if (closest_points_) {
     result->setPersistentManifold(manifold_);
     if (r.distance <= double(result->m_closestPointDistanceThreshold))
-      detail::addTargetPoint(r.normal, r.point_on_target, r.distance, dir, result);
+      detail::addRows({{r.point_on_target, r.normal, r.distance}}, dir, kInfinity, result);
     return;
   }
   const PluginSettings& ps = plugin_->settings();
@@ -126,36 +126,50 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   const ContactSettings contact =
       plugin_->pairSettings(body0->getCollisionObject(), body1->getCollisionObject());
   const double dt = double(info.m_timeStep);
-  // As ScCollisionAlgorithm: the response starts once the body was seen out of the
-  // plane or within the depth whose spring energy fits the recovery bound.
-  if (!r.penetrating() ||
-      r.tpdv.norm() <= detail::springReach(target, plane_side, contact, dt, ps.recovery_speed))
+  const detail::PairSpring spring = detail::pairSpring(target, plane_side, contact, dt);
+  // As ScCollisionAlgorithm: the rows start once the body was seen out of the plane
+  // or within the depth whose spring energy fits the recovery bound.
+  if (!r.penetrating() || r.tpdv.norm() <= detail::springReach(spring, ps.recovery_speed))
     spring_on_ = true;
-  const bool recover = r.penetrating() && !spring_on_;
-  if (ps.model == ContactModel::Manifold && !recover) {
-    if (manifold_ == nullptr)
-      manifold_ =
-          m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
-    result->setPersistentManifold(manifold_);
-    addCornerPoints(plane, t, hull, double(manifold_->getContactBreakingThreshold()), dir, result);
-    if (manifold_->getNumContacts() > 0) result->refreshContactPoints();
+  if (r.penetrating()) {
+    ++stats.penetrating;
+    stats.max_depth = std::max(stats.max_depth, r.tpdv.norm());
+  }
+  if (manifold_ == nullptr)
+    manifold_ =
+        m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
+  result->setPersistentManifold(manifold_);
+  if (r.penetrating() && !spring_on_) {
+    ++stats.recovering;
+    manifold_->clearManifold();
+    detail::deliver(*plugin_, target, plane_side,
+                    detail::recoveryImpulse(target, plane_side, plane.normal, r.tpdv.norm(),
+                                            ps.recovery_speed, contact.contact_period_steps * dt),
+                    Vec3::Zero());
     return;
   }
-  if (manifold_ != nullptr) manifold_->clearManifold();  // other model, or recovering
-  if (!r.penetrating()) return;
-  ++stats.penetrating;
-  stats.max_depth = std::max(stats.max_depth, r.tpdv.norm());
-  const double friction = double(body0->getCollisionObject()->getFriction() *
-                                 body1->getCollisionObject()->getFriction());
-  detail::Impulse imp;
-  if (recover) {
-    ++stats.recovering;
-    imp = detail::recoveryImpulse(target, plane_side, plane.normal, r.tpdv.norm(),
-                                  ps.recovery_speed, contact.contact_period_steps * dt);
-  } else {
-    imp = detail::potentialImpulse(r, target, plane_side, contact, dt, friction, ps.query.tolerance);
+  const double threshold = double(manifold_->getContactBreakingThreshold());
+  const bool fresh = !in_contact_;  // as ScCollisionAlgorithm: only a fresh impact
+  in_contact_ = r.penetrating();
+  const Vec3 shift = fresh ? detail::impactProjection(r, target, plane_side, dt, ps.query.tolerance)
+                           : Vec3::Zero();
+  if (!shift.isZero()) {
+    ++stats.projected;
+    detail::deliver(*plugin_, target, plane_side, btVector3(0, 0, 0), shift);
   }
-  detail::deliver(*plugin_, target, plane_side, imp);
+  points_.clear();
+  cornerPoints(plane, t, hull, shift, threshold, points_);
+  detail::keepDeepest(points_);
+  if (detail::anyTouching(points_, target, plane_side, dt)) ++stats.touching;
+  detail::addRows(points_, dir, detail::rowThreshold(spring, ps, threshold), result);
+  if (points_.empty() || manifold_->getNumContacts() == 0) {
+    manifold_->clearManifold();
+    return;
+  }
+  result->refreshContactPoints();
+  if (ps.model == ContactModel::Potential && shift.isZero())  // an impact's rows stay rigid
+    detail::softenRows(manifold_, spring, dt, contact.friction_scale, manifold_->getNumContacts());
+  stats.rows += manifold_->getNumContacts();
 }
 
 }  // namespace sc::bullet

@@ -539,6 +539,13 @@ class Demo {
     grip_rotation_ = Quat(double(q.w()), double(q.x()), double(q.y()), double(q.z())).normalized();
     tool_->setFlags(tool_->getFlags() | BT_DISABLE_WORLD_GRAVITY);
     tool_->setGravity(btVector3(0, 0, 0));
+    // The hand-held body's contacts are springs of a period of 10 physics steps
+    // (kT = m omega^2), not the default rigid rows: the coupling's force-continuity
+    // bound (docs/haptics.md) assumes a contact stops the body over several steps.
+    sc::bullet::ContactSettings soft = world_->plugin().settings().contact;
+    const double omega = 2.0 * 3.141592653589793 / (soft.contact_period_steps * physics_dt_);
+    soft.force_stiffness = double(1.0 / tool_->getInvMass()) * omega * omega;
+    if (!world_->plugin().setBodySettings(tool_, soft).ok()) fail("setBodySettings");
   }
 
   void buildCommon() {
@@ -665,7 +672,7 @@ class Demo {
     recordHealth(body, w);
     StateWords state = wordsOf(body);
     state[13] = double(physics_count_.load() + 1);
-    state[14] = world_->plugin().stats().penetrating > 0 ? 1.0 : 0.0;
+    state[14] = world_->plugin().stats().touching > 0 ? 1.0 : 0.0;
     body_state_.write(state);
     ++physics_count_;
   }

@@ -50,8 +50,7 @@ TEST_P(Recovery, QuarterOverlapSeparatesWithBoundedEnergy) {
 // Boxes spawned exactly touching: the pairs are first seen intersecting (touching
 // counts), get their depth at once (resolve_initial_intersection) and, being within
 // the spring's reach, the contact model at once. Nothing may pop: the kinetic plus
-// gravitational energy never rises above the spawn's (the potential model's springs
-// only store what gravity gives them while the stack settles into its sag).
+// gravitational energy never rises above the spawn's.
 TEST_P(Recovery, TowerSpawnedTouchingDoesNotPop) {
   BulletWorld w(GetParam());
   w.addGround();
@@ -74,14 +73,9 @@ TEST_P(Recovery, TowerSpawnedTouchingDoesNotPop) {
   std::printf("[touching spawn] max speed %.4f m/s, energy above spawn %.2e J, top at %.4f m "
               "(spawned at 4.5)\n", max_speed, max_energy, top);
   EXPECT_LE(max_energy, 1e-3);
-  // Potential: the stack sits in its static sag, load / k per contact with k = m_red
-  // omega^2 (docs/bullet.md): 5 m g on the ground (m_red = m), 4, 3, 2 and 1 m g
-  // between boxes (m_red = m / 2): 10.8 mm at 240 Hz. Manifold: no sag.
-  const double omega = 2.0 * 3.14159265358979 / (w.plugin->settings().contact.contact_period_steps * w.dt);
-  const double sag = GetParam() == bullet::ContactModel::Potential
-                         ? (5.0 + 2.0 * (4 + 3 + 2 + 1)) * 9.81 / (omega * omega)
-                         : 0.0;
-  EXPECT_NEAR(top, 4.5 - sag, 1e-3);
+  // Both models: the rows hold the load at the velocity level (docs/bullet.md), so
+  // the stack stays where it was spawned, within Bullet's slop.
+  EXPECT_NEAR(top, 4.5, 1e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, Recovery,

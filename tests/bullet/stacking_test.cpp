@@ -178,21 +178,6 @@ INSTANTIATE_TEST_SUITE_P(Modes, RotationStacking,
                          ::testing::Values(RotationMode::Mix, RotationMode::Free),
                          rotationModeName);
 
-/// The static depth of each contact of a column by the documented stiffness rule:
-/// the weight above over kT = m_red (2 pi / (10 dt))^2 (ground: m_red = the body's mass).
-std::vector<double> ruleDepths(const std::vector<double>& masses, double dt) {
-  const double omega = 2.0 * 3.141592653589793 / (10.0 * dt);
-  std::vector<double> d;
-  for (std::size_t i = 0; i < masses.size(); ++i) {
-    double above = 0.0;
-    for (std::size_t j = i; j < masses.size(); ++j) above += masses[j];
-    const double m_red =
-        i == 0 ? masses[0] : masses[i - 1] * masses[i] / (masses[i - 1] + masses[i]);
-    d.push_back(above * 9.81 / (m_red * omega * omega));
-  }
-  return d;
-}
-
 TEST_P(Stacking, MassRatioHundredStackStands) {
   BulletWorld w(GetParam());
   w.addGround();
@@ -209,18 +194,13 @@ TEST_P(Stacking, MassRatioHundredStackStands) {
   EXPECT_LE(r.max_drift, 0.02 * kBox);
   EXPECT_LE(r.top_creep, 0.02 * kBox);
   EXPECT_LE(r.max_tilt, 0.02);
-  // Potential: a light box under a heavy one carries 100x its weight on a spring
-  // sized by the reduced mass, so it sinks by several cm (docs/bullet.md); the stack
-  // must sit where the rule puts it (its statics are exact), within 25% of each depth
-  // + 1 mm. Manifold: Bullet's solver keeps the boxes apart (its slop, 1 mm).
-  const bool potential = GetParam() == bullet::ContactModel::Potential;
-  const std::vector<double> depth =
-      potential ? ruleDepths({1.0, 100.0, 1.0, 100.0}, w.dt) : std::vector<double>(4, 0.0);
+  // Both models: the rows hold the load at the velocity level (docs/bullet.md); a
+  // light box under 100x its weight yields only Bullet's slop and what 100 solver
+  // iterations leave unresolved: within 2 mm of the ideal spacing at every contact.
   double below = 0.0;
   for (std::size_t i = 0; i < watch.size(); ++i) {
     const double y = double(watch[i].body->getCenterOfMassPosition().y());
-    const double expected = (i == 0 ? 0.5 : 1.0) * kBox - depth[i];
-    EXPECT_NEAR(y - below, expected, 0.25 * depth[i] + 1e-3) << "contact under body " << i;
+    EXPECT_NEAR(y - below, (i == 0 ? 0.5 : 1.0) * kBox, 2e-3) << "contact under body " << i;
     below = y;
   }
 }

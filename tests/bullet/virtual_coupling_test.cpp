@@ -227,7 +227,10 @@ TEST(VirtualCouplingTest, ImpactJumpStaysWithinItsBound) {
   for (int i = 0; i < 600; ++i) {
     device.position = Vec3(0, top - std::min(0.1 * i / kHz, 0.0205), 0);
     rig.step(coupling, device);
-    if (since_contact < 0 && rig.world.plugin->stats().penetrating > 0) since_contact = 0;
+    // Onset: the box within 0.5 mm of the floor (geometry, not the plugin's counts:
+    // the rows stop the box at the surface, before any penetration is seen).
+    if (since_contact < 0 && double(rig.body->getCenterOfMassPosition().y()) < kHalf + 5e-4)
+      since_contact = 0;
     const Vec3 f = coupling.reaction(device, bullet::bodyStateOf(*rig.body)).force;
     const bool impact = since_contact >= 0 && since_contact < 20;
     double& worst = impact ? impact_jump : other_jump;

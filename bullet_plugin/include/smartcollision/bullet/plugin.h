@@ -22,6 +22,13 @@ struct StepStats {
   int recovering = 0;         ///< directions first seen intersecting (AABB push)
   double max_depth = 0.0;     ///< largest |TPDV| [m]
   double max_rotation = 0.0;  ///< largest |RPDV| [rad]
+  int projected = 0;          ///< directions whose impact was projected to the entry side
+  int rows = 0;               ///< contact rows handed to Bullet's solver
+  int dropped_rows = 0;       ///< row candidates beyond the patches a pair keeps
+  /// directions in contact this step: a row touching, or whose gap closes within the
+  /// step at the current approach speed (the rows stop a body at the surface, so an
+  /// impact shows here before any penetration does)
+  int touching = 0;
 };
 
 class Plugin {
@@ -39,7 +46,9 @@ class Plugin {
 
   /// Per-body override of the world's ContactSettings. A pair with two overridden
   /// bodies takes the larger stiffnesses and damping ratio and the shorter period.
-  void setBodySettings(const btCollisionObject* body, const ContactSettings& settings);
+  /// Every valid setting is honoured as given (the rows are implicit: no stiffness is
+  /// clamped); InvalidArgument (nothing kept) otherwise.
+  Status setBodySettings(const btCollisionObject* body, const ContactSettings& settings);
   void clearBodySettings(const btCollisionObject* body);
   /// The settings of the pair (a, b) after the overrides.
   ContactSettings pairSettings(const btCollisionObject* a, const btCollisionObject* b) const;
@@ -51,21 +60,20 @@ class Plugin {
   /// other shape.
   ModelPtr primitiveModel(const btCollisionShape* shape);
 
-  // Impulse buffer: filled during collision detection, applied after it.
-  /// Called by ScDynamicsWorld; without a world the algorithm applies impulses at once.
+  // Buffer of the direct corrections, filled during collision detection and applied
+  // after it (the rows go to Bullet's solver through the pairs' manifolds).
+  /// Called by ScDynamicsWorld; without a world the algorithm applies them at once.
   void attachWorld(bool attached) { world_attached_ = attached; }
   bool worldAttached() const { return world_attached_; }
-  /// One contact's impulse on `body`, at `lever` from its centre of mass: the spring
-  /// part `linear`, the velocity part `velocity` (damping, friction), and the torque
-  /// impulse's spring part `angular` and velocity part `angular_velocity` (damping).
-  void addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& linear,
-                  const btVector3& velocity, const btVector3& angular,
-                  const btVector3& angular_velocity);
+  /// Recovery push of a pair first seen deep: an impulse on `body` at `lever` from
+  /// its centre of mass.
+  void addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& impulse);
+  /// Projection of an impact: `body` is moved by `shift` back to the entry side.
+  /// Several projections of one body combine as the largest along each one's
+  /// direction (two supports under a landing body do not lift it twice).
+  void addProjection(btRigidBody* body, const btVector3& shift);
   void beginStep();
-  /// Applies and clears the buffered impulses. A body's velocity parts (linear and
-  /// angular) are divided by its number of contacts in the substep: summed at once
-  /// (Jacobi), full parts from several contacts would overshoot and flip the body's
-  /// velocity every substep.
+  /// Applies and clears the buffered impulses and projections.
   void applyImpulses();
 
   StepStats& stats() { return stats_; }
@@ -81,10 +89,7 @@ class Plugin {
   struct Impulse {
     btRigidBody* body;
     btVector3 lever;
-    btVector3 linear;
-    btVector3 velocity;
-    btVector3 angular;
-    btVector3 angular_velocity;
+    btVector3 impulse;
   };
   struct CachedModel {
     ModelPtr model;
@@ -96,7 +101,7 @@ class Plugin {
   std::unordered_map<const btCollisionObject*, ContactSettings> body_settings_;
   std::unordered_map<const btCollisionShape*, CachedModel> models_;
   std::vector<Impulse> impulses_;
-  std::unordered_map<const btRigidBody*, int> contact_counts_;  ///< reused every substep
+  std::unordered_map<btRigidBody*, btVector3> projections_;  ///< reused every substep
   StepStats stats_;
   bool world_attached_ = false;
   std::unique_ptr<CreateFuncs> create_funcs_;

@@ -6,12 +6,19 @@
 #include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <btBulletCollisionCommon.h>
 
+#include <vector>
+
 #include "smartcollision/collision.h"
 #include "smartcollision/model.h"
 
 namespace sc::bullet {
 
 class Plugin;
+namespace detail {
+struct RowPoint;
+struct RowCandidate;
+struct ContactCluster;
+}
 
 class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
  public:
@@ -22,8 +29,9 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
                        Plugin* plugin, bool closest_points);
   ~ScCollisionAlgorithm() override;
 
-  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
-                        const btDispatcherInfo& info, btManifoldResult* result) override;
+  void processCollision(const btCollisionObjectWrapper* body0,
+                        const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                        btManifoldResult* result) override;
   btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
                                  btManifoldResult*) override {
     return btScalar(1);
@@ -34,13 +42,29 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   Plugin* plugin_;
   const btCollisionObject* objects_[2];
   ModelPtr models_[2];  ///< per side; null: a shape the algorithm cannot take (ignored)
-  btPersistentManifold* manifold_ = nullptr;
+  btPersistentManifold* manifold_ = nullptr;  ///< closest-point queries only
   bool closest_points_;
+  /// One manifold per contact patch (detail::buildClusters), so that each patch keeps
+  /// its rows from step to step; null until a patch needs it.
+  static constexpr int kManifolds = 4;
+  btPersistentManifold* manifolds_[kManifolds] = {nullptr, nullptr, nullptr, nullptr};
   /// Per direction: the spring (or the manifold) responds; set once the pair is seen
   /// apart or within detail::springReach. Before that a depth (a pair that starts
   /// deeply intersecting) gets the bounded recovery push.
   bool spring_on_[2] = {false, false};
+  /// Per direction: penetrating in the last step (only a fresh impact is projected).
+  bool in_contact_[2] = {false, false};
   PairTracker tracker_;
+  std::vector<ContactPoint> contacts_;    ///< the core's contacts of a direction (reused)
+  std::vector<detail::RowPoint> points_;  ///< a direction's row points (reused)
+  std::vector<Vec3> corners_;             ///< a convex target piece's corners (reused)
+  std::vector<detail::RowCandidate> candidates_;  ///< both directions' rows (reused)
+  std::vector<int> labels_;                       ///< clustering scratch (reused)
+  std::vector<detail::ContactCluster> clusters_;  ///< the step's patches (reused)
+
+  /// The manifold for a patch of normal `normal`: the one that held the same patch
+  /// last step, else an empty one; marks it taken.
+  btPersistentManifold* manifoldFor(const Vec3& normal, bool taken[kManifolds]);
 };
 
 }  // namespace sc::bullet

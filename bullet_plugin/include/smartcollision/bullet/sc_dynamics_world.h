@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
-// ScDynamicsWorld: a btDiscreteDynamicsWorld that applies the potential model's
-// impulses right after collision detection, in the same substep.
+// ScDynamicsWorld: a btDiscreteDynamicsWorld that applies the plugin's direct
+// corrections (recovery pushes, impact projections) right after collision detection,
+// in the same substep, and keeps fast bodies' pairs across the step they cross a wall.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
 
 #include <memory>
+#include <unordered_map>
 
 #include "smartcollision/bullet/plugin.h"
 
@@ -30,13 +32,18 @@ class ScDynamicsWorld : public btDiscreteDynamicsWorld {
   Plugin& plugin() { return *plugin_; }
   const Plugin& plugin() const { return *plugin_; }
 
-  /// Bullet's detection, then the buffered impulses (F dt, tau dt): velocities change
-  /// before the solver and the integration of this substep. Forces would pile up
-  /// across substeps, since Bullet clears them once per stepSimulation.
+  /// Bullet's detection, then the buffered recovery impulses and impact projections,
+  /// before the solver and the integration of this substep; then the poses the next
+  /// detection sweeps from.
   void performDiscreteCollisionDetection() override;
+  /// Bullet's AABBs (current pose and, for moving bodies, the predicted one) widened
+  /// to the pose of the last detection: a body that crossed a thin wall within one
+  /// step keeps its pair with the wall, whose dynamic PD then sees the crossing.
+  void updateAabbs() override;
 
  private:
   std::shared_ptr<Plugin> plugin_;
+  std::unordered_map<const btCollisionObject*, btTransform> last_poses_;
 };
 
 }  // namespace sc::bullet

@@ -7,9 +7,14 @@
 #include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <btBulletCollisionCommon.h>
 
+#include <vector>
+
 namespace sc::bullet {
 
 class Plugin;
+namespace detail {
+struct RowPoint;
+}
 
 class ScPlaneAlgorithm : public btActivatingCollisionAlgorithm {
  public:
@@ -37,6 +42,8 @@ class ScPlaneAlgorithm : public btActivatingCollisionAlgorithm {
   /// detail::springReach); before that a body deep in the plane is pushed out at a
   /// bounded speed.
   bool spring_on_ = false;
+  bool in_contact_ = false;  ///< penetrating in the last step (only a fresh impact is projected)
+  std::vector<detail::RowPoint> points_;  ///< row points of the step (reused)
 };
 
 }  // namespace sc::bullet

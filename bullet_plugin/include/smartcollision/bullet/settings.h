@@ -11,22 +11,25 @@ namespace sc::bullet {
 
 /// How a penetrating pair acts on its bodies; switchable at run time, per world.
 enum class ContactModel : std::uint8_t {
-  Potential,  ///< manual 5.9: F = -kT TPDV, tau = -kR RPDV per body, plus damping (default)
+  Potential,  ///< manual 5.9: the spring-damper of ContactSettings at the contact polygon (default)
   Manifold,   ///< the result's contacts go to a persistent manifold for Bullet's solver
 };
 
-/// Spring-damper of the potential model. Zero stiffness means "derive": with the
-/// pair's reduced mass m (moment of inertia I) and the substep dt,
-///   omega = 2 pi / (contact_period_steps dt),  kT = m omega^2,  kR = I omega^2,
-///   cT = 2 damping_ratio sqrt(kT m_d),         cR = 2 damping_ratio sqrt(kR I),
-/// m_d = m, or the body's own mass for the heavier body of the pair. The spring is
-/// explicit (exact statics), the damping implicit; k is clamped to m / dt^2 for
-/// stability. See docs/bullet.md.
+/// Spring-damper of the potential model, integrated implicitly by Bullet's solver as
+/// rows at the contact points of a pair (docs/bullet.md). With omega =
+/// 2 pi / (contact_period_steps dt): by default (force_stiffness 0) each row is rigid
+/// at the velocity level and recovers depth at the rate of a spring-damper of
+/// frequency omega and ratio damping_ratio relative to the row's own effective mass
+/// (erp = dt omega / (dt omega + 2 zeta)): no sag under any load or mass ratio beyond
+/// what the solver's iterations leave. A force_stiffness set here is a true implicit
+/// spring kT spread over the pair's rows, honoured as given (statics: sag = load / kT).
 struct ContactSettings {
   double contact_period_steps = 10.0;  ///< natural period of a contact in substeps (>= 1)
   double damping_ratio = 1.0;          ///< zeta; 1 = critical (>= 0)
   double force_stiffness = 0.0;        ///< kT [N/m]; 0 = derived
-  double torque_stiffness = 0.0;       ///< kR [N m/rad]; 0 = derived
+  /// kR [N m/rad]; 0 = derived (I omega^2). Weighs rotation against translation in
+  /// the Mix rotation mode; the rows' torque is the contact polygon's (docs/bullet.md).
+  double torque_stiffness = 0.0;
   double friction_scale = 1.0;         ///< scales Bullet's combined friction (potential model)
 };
 
@@ -50,6 +53,7 @@ struct PluginSettings {
 };
 
 /// Ok, or InvalidArgument naming the first bad field.
+Status validate(const ContactSettings& settings);
 Status validate(const PluginSettings& settings);
 
 }  // namespace sc::bullet

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// Contact clusters: a pair's row candidates (thousands for two 75k-triangle meshes)
+// grouped by normal into a few patches, each reduced to the few points that span it,
+// so that each patch keeps a manifold of its own and its rows stay the same from step
+// to step.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "smartcollision/types.h"
+
+namespace sc::bullet::detail {
+
+/// A row candidate in the manifold's frame: `normal` from body 1 towards body 0 (unit),
+/// `on_b` the point on body 1, `separation` along the normal (< 0 penetrating).
+struct RowCandidate {
+  Vec3 on_b = Vec3::Zero();
+  Vec3 normal = Vec3::UnitY();
+  double separation = 0.0;
+  bool exact = false;  ///< a corner of a convex piece (a stable vertex), not a leaf contact
+};
+
+/// Patches per pair, rows per patch: a patch of corners keeps them (up to
+/// kClusterPoints), a patch of leaf contacts gets five rows from its moments
+/// (growCluster); Bullet's manifold keeps the deepest and the widest 4 of them.
+constexpr int kMaxClusters = 4;
+constexpr int kClusterPoints = 16;
+/// Candidates whose normals are within this cosine (about 25 degrees) share a patch.
+constexpr double kClusterCos = 0.9;
+
+struct ContactCluster {
+  Vec3 normal = Vec3::UnitY();  ///< the deepest candidate's normal
+  int count = 0;                ///< candidates in the patch
+  std::array<RowCandidate, kClusterPoints> points;  ///< the patch's rows
+  int point_count = 0;
+};
+
+/// Groups `candidates` into at most kMaxClusters patches: the deepest candidate seeds
+/// the first and takes every candidate whose normal is within kClusterCos of its own,
+/// the deepest of the rest seeds the next, and so on. Candidates left when all patches
+/// are taken are dropped; returns how many. `labels` is scratch (one per candidate);
+/// allocation-free once the vectors have their capacity.
+int buildClusters(const std::vector<RowCandidate>& candidates, std::vector<int>& labels,
+                  std::vector<ContactCluster>& clusters);
+
+}  // namespace sc::bullet::detail

@@ -15,7 +15,8 @@ int deepestFree(const std::vector<RowCandidate>& candidates, const std::vector<i
   int best = -1;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (labels[i] >= 0) continue;
-    if (best < 0 || candidates[i].separation < candidates[static_cast<std::size_t>(best)].separation)
+    if (best < 0 ||
+        candidates[i].separation < candidates[static_cast<std::size_t>(best)].separation)
       best = static_cast<int>(i);
   }
   return best;

@@ -30,8 +30,8 @@ constexpr int kClusterPoints = 16;
 constexpr double kClusterCos = 0.9;
 
 struct ContactCluster {
-  Vec3 normal = Vec3::UnitY();  ///< the deepest candidate's normal
-  int count = 0;                ///< candidates in the patch
+  Vec3 normal = Vec3::UnitY();                      ///< the deepest candidate's normal
+  int count = 0;                                    ///< candidates in the patch
   std::array<RowCandidate, kClusterPoints> points;  ///< the patch's rows
   int point_count = 0;
 };

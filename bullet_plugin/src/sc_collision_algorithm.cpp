@@ -279,6 +279,11 @@ void reportClosestPoints(const DirectedResult out[2], const Side sides[2], bool 
 struct DirectionState {
   Plugin& plugin;
   PairTracker& tracker;
+  /// The tracker and results the rows are measured from: `tracker` and its results
+  /// in Input, an Input-mode tracker in Mix and Free (their contact configuration is
+  /// turned away from the current overlap, so its contacts are not the bodies').
+  PairTracker& rows_tracker;
+  const DirectedResult* rows_out;
   bool* spring_on;
   bool* in_contact;  ///< per direction: penetrating in the last step
   std::vector<detail::RowPoint>& points;
@@ -289,13 +294,14 @@ struct DirectionState {
 
 /// The direction's row points: the result's contact carried to the current pose, the
 /// support polygon of a convex target, the core's contacts of a non-convex one.
-void gatherPoints(const DirectedResult& r, int dir, const Side& t, const Side& o, const Vec3& shift,
-                  double threshold, double tolerance, DirectionState& d) {
+void gatherPoints(int dir, const Side& t, const Side& o, const Vec3& shift, double threshold,
+                  double tolerance, DirectionState& d) {
+  const DirectedResult& r = d.rows_out[dir];
   addSupportCorners(r, t, o, shift, threshold, d.corners, d.points);
   const std::size_t exact = d.points.size();  // corner rows measured on a convex piece
   if (!wholeConvex(t)) {
     // Non-convex: the core's contacts within the threshold, each a leaf pair.
-    d.tracker.contactPoints(dir, threshold, d.contacts);
+    d.rows_tracker.contactPoints(dir, threshold, d.contacts);
     // Rounded sides: the core measured their cores (inflate() for the result).
     const double rr = t.radius + o.radius;
     for (const ContactPoint& c : d.contacts)
@@ -309,13 +315,10 @@ void gatherPoints(const DirectedResult& r, int dir, const Side& t, const Side& o
     d.points.push_back({r.point_on_opponent + r.distance * r.normal + shift, r.normal,
                         r.distance + r.normal.dot(shift)});
   // No row measured against a plane deeper than the pair's translational depth plus
-  // the tolerance (a core contact's plane may lie beyond the overlap and push too
-  // hard). Only in Input: Mix's and Free's TPDV is shorter, the rest is turned.
-  if (d.plugin.settings().query.rotation_mode == RotationMode::Input) {
-    const double floor = -(r.penetrating() ? r.tpdv.norm() : 0.0) - tolerance;
-    for (std::size_t i = exact; i < d.points.size(); ++i)
-      d.points[i].separation = std::max(d.points[i].separation, floor);
-  }
+  // the tolerance (a core contact's plane may lie beyond the overlap and push too hard).
+  const double floor = -(r.penetrating() ? r.tpdv.norm() : 0.0) - tolerance;
+  for (std::size_t i = exact; i < d.points.size(); ++i)
+    d.points[i].separation = std::max(d.points[i].separation, floor);
   if (detail::anyTouching(d.points, t.body, o.body, d.dt)) ++d.plugin.stats().touching;
 }
 
@@ -373,7 +376,7 @@ void respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
     ++stats.projected;
     detail::deliver(d.plugin, t.body, o.body, btVector3(0, 0, 0), shift);
   }
-  gatherPoints(r, dir, t, o, shift, threshold, tolerance, d);
+  gatherPoints(dir, t, o, shift, threshold, tolerance, d);
 }
 
 }  // namespace
@@ -423,8 +426,8 @@ btPersistentManifold* ScCollisionAlgorithm::manifoldFor(const Vec3& normal,
   taken[best] = true;
   btPersistentManifold*& m = manifolds_[best];
   if (m == nullptr) m = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
-  if (m->getNumContacts() > 0 && toVec(m->getContactPoint(0).m_normalWorldOnB).dot(normal) <
-                                     detail::kClusterCos)
+  if (m->getNumContacts() > 0 &&
+      toVec(m->getContactPoint(0).m_normalWorldOnB).dot(normal) < detail::kClusterCos)
     m->clearManifold();
   return m;
 }
@@ -461,12 +464,28 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   const detail::PairSpring spring = detail::pairSpring(sides[0].body, sides[1].body, contact, dt);
   StepStats& stats = plugin_->stats();
   ++stats.pairs;
-  const double threshold = double(
-      std::min(objects_[0]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
-               objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
+  const double threshold = double(std::min(
+      objects_[0]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
+      objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
   const double row_threshold = detail::rowThreshold(spring, ps, threshold);
   const int projected_before = stats.projected;
-  DirectionState state{*plugin_, tracker_, spring_on_, in_contact_, points_, contacts_, corners_, dt};
+  // Rows from an Input-mode tracker when the query turns and a side is non-convex
+  // (convex pairs measure their corners at the current pose in any mode).
+  const DirectedResult* rows_out = out;
+  DirectedResult input_out[2];
+  if (query.rotation_mode != RotationMode::Input &&
+      !(wholeConvex(sides[0]) && wholeConvex(sides[1]))) {
+    SceneSettings input = query;
+    input.rotation_mode = RotationMode::Input;
+    rows_tracker_.update(sides[0].view, sides[1].view, dirs, input, input_out);
+    for (int dir = 0; dir < 2; ++dir)
+      inflate(input_out[dir], sides[dir].radius, sides[1 - dir].radius);
+    rows_out = input_out;
+  }
+  DirectionState state{*plugin_, tracker_,   rows_out == out ? tracker_ : rows_tracker_,
+                       rows_out, spring_on_, in_contact_,
+                       points_,  contacts_,  corners_,
+                       dt};
   candidates_.clear();
   for (int dir = 0; dir < 2; ++dir) {
     points_.clear();

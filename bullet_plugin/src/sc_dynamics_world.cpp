@@ -40,6 +40,25 @@ void ScDynamicsWorld::performDiscreteCollisionDetection() {
   }
 }
 
+void ScDynamicsWorld::integrateTransforms(btScalar timeStep) {
+  btDiscreteDynamicsWorld::integrateTransforms(timeStep);
+  if (!plugin_ || !movedFar()) return;
+  // A body that moved far this step may now be in or past another: detect again, so
+  // an impact's projection puts it back on the entry side within the step, not one
+  // frame later (the next step's rows then stop it).
+  performDiscreteCollisionDetection();
+}
+
+bool ScDynamicsWorld::movedFar() const {
+  for (const auto& [object, pose] : last_poses_) {
+    btVector3 lo, hi;
+    object->getCollisionShape()->getAabb(pose, lo, hi);
+    const btScalar moved = (object->getWorldTransform().getOrigin() - pose.getOrigin()).length();
+    if (moved > kFarFraction * (hi - lo).length()) return true;
+  }
+  return false;
+}
+
 void ScDynamicsWorld::updateAabbs() {
   btDiscreteDynamicsWorld::updateAabbs();
   for (const auto& [object, pose] : last_poses_) {

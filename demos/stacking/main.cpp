@@ -40,6 +40,7 @@ struct Body {
   btRigidBody* body = nullptr;
   const sc::demo::DrawMesh* mesh = nullptr;
   btVector3 start;
+  btVector3 scale = btVector3(1, 1, 1);  ///< drawn mesh scaled (walls of the pile's box)
   float color[3] = {0.8f, 0.5f, 0.3f};
 };
 
@@ -47,6 +48,13 @@ sc::demo::DrawMesh drawMeshOf(const sc::bullet::ScBulletShape& shape) {
   sc::demo::DrawMesh m;
   for (const btVector3& v : shape.vertices()) m.vertices.insert(m.vertices.end(), {float(v.x()), float(v.y()), float(v.z())});
   m.indices = shape.indices();
+  return m;
+}
+
+sc::demo::DrawMesh drawMeshOf(const sc::MeshData& mesh) {
+  sc::demo::DrawMesh m;
+  for (const sc::Vec3& v : mesh.vertices) m.vertices.insert(m.vertices.end(), {float(v.x()), float(v.y()), float(v.z())});
+  for (const sc::Tri& t : mesh.triangles) m.indices.insert(m.indices.end(), {t[0], t[1], t[2]});
   return m;
 }
 
@@ -121,6 +129,8 @@ class Demo {
       for (int i = 0; i < 4; ++i) addBox(btVector3(0, btScalar(i + 0.5 + (i + 1) * 0.01), 0), masses[i]);
     } else if (options_.scene == "meshes") {
       addMeshes();
+    } else if (options_.scene == "pile") {
+      addPile();
     } else {
       for (int i = 0; i < 10; ++i) addBox(btVector3(0, btScalar(i + 0.5 + (i + 1) * 0.01), 0), 1.0);
     }
@@ -189,6 +199,7 @@ class Demo {
     items.push_back(ground);
     std::vector<const Body*> drawn;
     if (base_.body != nullptr) drawn.push_back(&base_);
+    for (const Body& b : walls_) drawn.push_back(&b);
     for (const Body& b : bodies_) drawn.push_back(&b);
     for (const Body* bp : drawn) {
       const Body& b = *bp;
@@ -196,6 +207,8 @@ class Demo {
       item.mesh = b.mesh;
       b.body->getWorldTransform().getOpenGLMatrix(m);
       for (int i = 0; i < 16; ++i) item.matrix[i] = float(m[i]);
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 4; ++r) item.matrix[4 * c + r] *= float(b.scale[c]);
       std::memcpy(item.color, b.color, sizeof(item.color));
       items.push_back(item);
     }
@@ -204,7 +217,7 @@ class Demo {
   std::string overlay() const {
     char buf[512];
     std::snprintf(buf, sizeof(buf),
-                  "scene %s (1 tower, 2 pyramid, 3 mass ratio, 4 meshes; r reset)\n"
+                  "scene %s (1 tower, 2 pyramid, 3 mass ratio, 4 meshes, 5 pile; r reset)\n"
                   "model %s (m switches)   t = %.2f s   %.3f ms/step\n"
                   "top drift %.4f m   max penetration %.4f m",
                   options_.scene.c_str(), options_.model == ContactModel::Potential ? "potential" : "manifold",
@@ -240,8 +253,8 @@ class Demo {
     return buf;
   }
 
-  float targetY() const { return options_.scene == "tower" ? 5.0f : 1.5f; }
-  float distance() const { return options_.scene == "tower" ? 19.0f : options_.scene == "meshes" ? 7.0f : 10.0f; }
+  float targetY() const { return options_.scene == "tower" ? 5.0f : options_.scene == "pile" ? 0.6f : 1.5f; }
+  float distance() const { return options_.scene == "tower" ? 19.0f : options_.scene == "meshes" || options_.scene == "pile" ? 7.0f : 10.0f; }
 
  private:
   std::shared_ptr<sc::bullet::ScBulletShape> makeShape(const sc::MeshData& mesh) {
@@ -276,6 +289,58 @@ class Demo {
     const float* c = palette[bodies_.size() % 3];
     for (int k = 0; k < 3; ++k) b.color[k] = c[k] - shade * c[k];
     bodies_.push_back(b);
+  }
+
+  /// A 3 m x 3 m box of walls 1.2 m high (Bullet boxes: primitives stay primitives)
+  /// and 24 of CGAL's knots (non-convex, 0.5 m) dropped into it in layers, turned at
+  /// random. (Cows, elephants and camels in the same pile grow the process past 7 GB:
+  /// issue 16 open.)
+  void addPile() {
+    const btVector3 halves[5] = {{1.5f, 0.05f, 1.5f}, {0.05f, 0.6f, 1.5f}, {0.05f, 0.6f, 1.5f},
+                                 {1.5f, 0.6f, 0.05f}, {1.5f, 0.6f, 0.05f}};
+    const btVector3 at[5] = {{0, 0.05f, 0}, {-1.55f, 0.6f, 0}, {1.55f, 0.6f, 0},
+                             {0, 0.6f, -1.55f}, {0, 0.6f, 1.55f}};
+    for (int i = 0; i < 5; ++i) {
+      wall_shapes_.push_back(std::make_unique<btBoxShape>(halves[i]));
+      wall_draw_.push_back(std::make_unique<sc::demo::DrawMesh>(drawMeshOf(boxMesh(1.0))));
+      Body b;
+      b.body = addRigid(wall_shapes_.back().get(), 0.0, at[i]);
+      b.mesh = wall_draw_.back().get();
+      b.scale = halves[i];
+      b.color[0] = b.color[1] = b.color[2] = 0.6f;
+      walls_.push_back(b);
+    }
+    const char* names[1] = {"knot1"};
+    std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> kinds;
+    for (const char* name : names) {
+      sc::MeshData mesh = sc::demo::readOff(std::string(SC_DEMO_MESH_DIR "/") + name + ".off");
+      auto shape = mesh.triangles.empty() ? nullptr : makeShape(normalised(std::move(mesh), 0.5));
+      if (!shape) continue;
+      kinds.push_back(shape);
+      mesh_draw_.push_back(std::make_unique<sc::demo::DrawMesh>(drawMeshOf(*shape)));
+    }
+    if (kinds.empty()) {
+      std::fprintf(stderr, "no CGAL mesh found in %s\n", SC_DEMO_MESH_DIR);
+      std::exit(1);
+    }
+    unsigned seed = 7;
+    auto next = [&seed] { return (seed = seed * 1103515245u + 12345u) / 4294967296.0; };
+    for (int i = 0; i < 24; ++i) {
+      const std::size_t k = static_cast<std::size_t>(i) % kinds.size();
+      const btVector3 p(btScalar(-0.9 + 0.6 * (i % 4)), btScalar(0.5 + 0.6 * (i / 4)),
+                        btScalar(-0.3 + 0.6 * ((i / 2) % 2)));
+      Body b;
+      b.body = addRigid(kinds[k].get(), 1.0, p);
+      b.body->getWorldTransform().setRotation(
+          btQuaternion(btVector3(btScalar(next() - 0.5), 1, btScalar(next() - 0.5)).normalized(),
+                       btScalar(6.283 * next())));
+      b.mesh = mesh_draw_[mesh_draw_.size() - kinds.size() + k].get();
+      b.start = p;
+      const float palette[4][3] = {{0.85f, 0.45f, 0.25f}, {0.3f, 0.55f, 0.8f},
+                                   {0.45f, 0.7f, 0.35f}, {0.8f, 0.7f, 0.3f}};
+      std::memcpy(b.color, palette[i % 4], sizeof(b.color));
+      bodies_.push_back(b);
+    }
   }
 
   /// The first mesh is a static base (3 m), the others drop onto it (1 m each).
@@ -324,6 +389,7 @@ class Demo {
       for (auto& b : rigid_) world_->removeRigidBody(b.get());
     rigid_.clear();
     bodies_.clear();
+    walls_.clear();
     base_ = Body();
     world_.reset();
     solver_.reset();
@@ -331,6 +397,8 @@ class Demo {
     dispatcher_.reset();
     config_.reset();
     mesh_draw_.clear();
+    wall_draw_.clear();
+    wall_shapes_.clear();
     shapes_.clear();
     rest_sum_ = 0.0;
     rest_samples_ = 0;
@@ -350,6 +418,9 @@ class Demo {
   std::vector<std::unique_ptr<btRigidBody>> rigid_;
   std::vector<Body> bodies_;  ///< the dynamic bodies (metrics)
   Body base_;                 ///< static mesh of the meshes scene
+  std::vector<Body> walls_;   ///< static walls of the pile scene
+  std::vector<std::unique_ptr<btBoxShape>> wall_shapes_;
+  std::vector<std::unique_ptr<sc::demo::DrawMesh>> wall_draw_;
   long steps_ = 0;
   double step_seconds_ = 0.0, max_depth_ = 0.0, max_drift_ = 0.0;
   long non_finite_steps_ = 0, rss_after_1s_kb_ = 0;
@@ -379,7 +450,7 @@ bool parse(int argc, char** argv, Options& o) {
       o.scene = "meshes";
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--scene tower|pyramid|massratio|meshes] [--model potential|manifold]\n"
+                   "usage: %s [--scene tower|pyramid|massratio|meshes|pile] [--model potential|manifold]\n"
                    "          [--rotation input|mix|free] [--hz RATE (240)]\n"
                    "          [--mesh BASE.off --mesh BODY.off...] [--headless [--seconds S | --steps N] [--png F] [--json F]]\n",
                    argv[0]);
@@ -421,6 +492,7 @@ int main(int argc, char** argv) {
     if (k == '2') demo.setScene("pyramid");
     if (k == '3') demo.setScene("massratio");
     if (k == '4') demo.setScene("meshes");
+    if (k == '5') demo.setScene("pile");
   };
   sc::demo::runViewer(argc, argv, "SmartCollision stacking", cb, demo.targetY(), demo.distance());
   return 0;

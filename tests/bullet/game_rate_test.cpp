@@ -265,14 +265,21 @@ std::string projectileName(
          std::get<1>(p.param).name + std::to_string(int(std::get<1>(p.param).speed));
 }
 
-// Not yet (issue 16 open): at 60 Hz most start phases still pass the 1 cm wall.
-INSTANTIATE_TEST_SUITE_P(
-    DISABLED_Shots, GameRateProjectile,
-    ::testing::Combine(::testing::Values(bullet::ContactModel::Potential,
-                                         bullet::ContactModel::Manifold),
-                       ::testing::Values(Projectile{"cube", 50.0}, Projectile{"cube", 200.0},
-                                         Projectile{"torus", 50.0}, Projectile{"torus", 200.0})),
-    projectileName);
+INSTANTIATE_TEST_SUITE_P(Shots, GameRateProjectile,
+                         ::testing::Combine(::testing::Values(bullet::ContactModel::Potential,
+                                                              bullet::ContactModel::Manifold),
+                                            ::testing::Values(Projectile{"cube", 50.0},
+                                                              Projectile{"cube", 200.0},
+                                                              Projectile{"torus", 50.0})),
+                         projectileName);
+
+// Not yet (issue 16 open): the torus at 200 m/s is stopped at the wall but leaves it
+// at 1.9 m/s (its spin, turned into motion by the rows).
+INSTANTIATE_TEST_SUITE_P(DISABLED_Shots, GameRateProjectile,
+                         ::testing::Combine(::testing::Values(bullet::ContactModel::Potential,
+                                                              bullet::ContactModel::Manifold),
+                                            ::testing::Values(Projectile{"torus", 200.0})),
+                         projectileName);
 
 }  // namespace
 }  // namespace sc::test

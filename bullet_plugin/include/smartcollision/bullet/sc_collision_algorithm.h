@@ -18,7 +18,7 @@ namespace detail {
 struct RowPoint;
 struct RowCandidate;
 struct ContactCluster;
-}
+}  // namespace detail
 
 class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
  public:
@@ -55,6 +55,7 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   /// Per direction: penetrating in the last step (only a fresh impact is projected).
   bool in_contact_[2] = {false, false};
   PairTracker tracker_;
+  PairTracker rows_tracker_;              ///< Input-mode rows of non-convex pairs in Mix and Free
   std::vector<ContactPoint> contacts_;    ///< the core's contacts of a direction (reused)
   std::vector<detail::RowPoint> points_;  ///< a direction's row points (reused)
   std::vector<Vec3> corners_;             ///< a convex target piece's corners (reused)

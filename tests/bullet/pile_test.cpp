@@ -1,0 +1,247 @@
+// SPDX-License-Identifier: MIT
+// A pile of 24 non-convex bodies (tori of 0.5 m) dropped into a closed non-convex
+// bowl at 60 Hz: nothing passes the floor, overlaps stay within 10 mm, the pile comes
+// to rest, bodies tumble, and the energy never rises above the drop's, in the
+// potential model's three rotation modes and in the manifold model (whose memory is
+// bounded). Overlaps are measured here, exactly: a torus vertex inside another
+// torus's tube, or inside the bowl's shell, never from SmartCollision's answers.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "bullet_world.h"
+#include "support/shapes.h"
+
+namespace sc::test {
+namespace {
+
+constexpr double kMajor = 0.17, kMinor = 0.08;  // torus radii: 0.5 m across
+constexpr double kBowlInner = 1.2, kBowlOuter = 1.3;
+constexpr int kBodies = SC_TEST_SANITIZED ? 8 : 24;
+constexpr double kSeconds = SC_TEST_SANITIZED ? 3.0 : 10.0;
+constexpr double kSettledSeconds = 1.0;  // the pile at rest: the last second
+
+struct Pile {
+  std::vector<btRigidBody*> bodies;
+  std::vector<Vec3> vertices;  ///< the torus mesh's vertices, in its mesh frame
+  btTransform mesh_from_shape;
+};
+
+/// World pose of a body's mesh frame.
+btTransform meshPose(const Pile& pile, const btRigidBody& b) {
+  return b.getWorldTransform() * pile.mesh_from_shape.inverse();
+}
+
+/// Depth of world point `p` inside the smooth torus placed at `pose` (<= 0 outside).
+/// The mesh is inscribed in it, so this over-reports by the facets' sagitta (< 1.4 mm).
+double torusDepth(const btTransform& pose, const btVector3& p) {
+  const btVector3 q = pose.inverse() * p;
+  const double ring = std::hypot(double(q.x()), double(q.z())) - kMajor;
+  return kMinor - std::hypot(ring, double(q.y()));
+}
+
+/// Depth of `p` in the bowl's shell (rim at y = 0, centre at the origin).
+double bowlDepth(const btVector3& p) {
+  if (double(p.y()) > 0.0) return 0.0;
+  return std::max(0.0, double(p.length()) - kBowlInner);
+}
+
+struct Overlaps {
+  double bodies = 0.0;   ///< deepest vertex of a torus in another [m]
+  double bowl = 0.0;     ///< deepest vertex in the bowl's shell [m]
+  bool escaped = false;  ///< a body's centre out of the bowl's inside
+};
+
+Overlaps measure(const Pile& pile) {
+  Overlaps o;
+  std::vector<btTransform> poses;
+  for (const btRigidBody* b : pile.bodies) poses.push_back(meshPose(pile, *b));
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const btVector3 c = pile.bodies[i]->getCenterOfMassPosition();
+    o.escaped = o.escaped || (double(c.y()) < 0.0 && double(c.length()) > kBowlInner);
+    for (const Vec3& v : pile.vertices) {
+      const btVector3 p = poses[i] * btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
+      o.bowl = std::max(o.bowl, bowlDepth(p));
+      for (std::size_t j = 0; j < poses.size(); ++j) {
+        if (j == i ||
+            (poses[j].getOrigin() - poses[i].getOrigin()).length() > 2 * (kMajor + kMinor))
+          continue;
+        o.bodies = std::max(o.bodies, torusDepth(poses[j], p));
+      }
+    }
+  }
+  return o;
+}
+
+double energy(const BulletWorld& w, const Pile& pile) {
+  double e = w.kineticEnergy();
+  for (const btRigidBody* b : pile.bodies)
+    e += 9.81 * double(b->getCenterOfMassPosition().y()) / double(b->getInvMass());
+  return e;
+}
+
+Pile dropPile(BulletWorld& w) {
+  auto bowl = bullet::ScBulletShape::create(ModelKind::ClosedPolyhedron,
+                                            bowlMesh(kBowlInner, kBowlOuter, 16, 48));
+  const MeshData torus = torusMesh(kMajor, kMinor, 32, 12);
+  auto shape = bullet::ScBulletShape::create(ModelKind::ClosedPolyhedron, torus);
+  EXPECT_TRUE(bowl.ok() && shape.ok());
+  Pile pile;
+  if (!bowl.ok() || !shape.ok()) return pile;
+  // The shape is stored in its principal frame: the bowl's mesh frame (rim at y = 0)
+  // lands on the world origin when the body is placed at meshFromShape().
+  const btTransform& bowl_frame = bowl.value()->meshFromShape();
+  w.addBody(bowl.value(), 0.0, bowl_frame.getOrigin(), bowl_frame.getRotation());
+  pile.vertices = torus.vertices;
+  pile.mesh_from_shape = shape.value()->meshFromShape();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+  for (int i = 0; i < kBodies; ++i) {
+    const int layer = i / 4, k = i % 4;
+    const btVector3 at(btScalar((k % 2 ? 0.3 : -0.3)), btScalar(-0.6 + 0.6 * layer),
+                       btScalar((k / 2 ? 0.3 : -0.3)));
+    const btQuaternion q(
+        btVector3(btScalar(std::cos(angle(rng))), 1.0f, btScalar(std::sin(angle(rng))))
+            .normalized(),
+        btScalar(angle(rng)));
+    pile.bodies.push_back(w.addBody(shape.value(), 1.0, at, q));
+  }
+  return pile;
+}
+
+struct PileRun {
+  Overlaps worst;              ///< over the whole run, impacts included
+  Overlaps settled;            ///< over the last second
+  double rms_speed_end = 0.0;  ///< RMS speed over the last second [m/s]
+  double max_spin = 0.0;       ///< largest angular speed of any body [rad/s]
+  double energy_rise = 0.0;    ///< largest energy above the drop's [J]
+  double ms_per_step = 0.0;
+  long peak_rss_kb = 0;
+};
+
+PileRun run(BulletWorld& w, const Pile& pile, double hz, double seconds) {
+  PileRun r;
+  const double e0 = energy(w, pile);
+  const int steps = static_cast<int>(std::lround(seconds * hz));
+  const int last_second = static_cast<int>(std::lround(kSettledSeconds * hz));
+  const int every = std::max(1, static_cast<int>(std::lround(hz / 6.0)));  // 6 checks a second
+  double s2 = 0.0;
+  int samples = 0;
+  double step_ms = 0.0;
+  for (int i = 0; i < steps; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    w.step();
+    step_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r.energy_rise = std::max(r.energy_rise, energy(w, pile) - e0);
+    for (const btRigidBody* b : pile.bodies)
+      r.max_spin = std::max(r.max_spin, double(b->getAngularVelocity().length()));
+    if (i % every == every - 1 || i == steps - 1) {
+      const Overlaps o = measure(pile);
+      for (Overlaps* into : {&r.worst, i >= steps - last_second ? &r.settled : &r.worst}) {
+        into->bodies = std::max(into->bodies, o.bodies);
+        into->bowl = std::max(into->bowl, o.bowl);
+        into->escaped = into->escaped || o.escaped;
+      }
+    }
+    if (i < steps - last_second) continue;
+    for (const btRigidBody* b : pile.bodies) s2 += double(b->getLinearVelocity().length2());
+    samples += static_cast<int>(pile.bodies.size());
+  }
+  r.rms_speed_end = std::sqrt(s2 / std::max(1, samples));
+  r.ms_per_step = step_ms / steps;
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  r.peak_rss_kb = u.ru_maxrss;
+  return r;
+}
+
+using PileParam = std::tuple<bullet::ContactModel, RotationMode, double>;
+
+std::string label(const PileParam& p) {
+  const RotationMode m = std::get<1>(p);
+  return std::string(std::get<0>(p) == bullet::ContactModel::Potential ? "Potential" : "Manifold") +
+         (m == RotationMode::Mix    ? "Mix"
+          : m == RotationMode::Free ? "Free"
+                                    : "Input") +
+         std::to_string(int(std::get<2>(p))) + "Hz";
+}
+
+PileRun dropAndRun(const PileParam& p, double seconds) {
+  const auto [model, mode, hz] = p;
+  BulletWorld w(model, -9.81, hz);
+  bullet::PluginSettings s = w.plugin->settings();
+  s.query.rotation_mode = mode;
+  EXPECT_TRUE(w.plugin->setSettings(s).ok());
+  const Pile pile = dropPile(w);
+  EXPECT_EQ(static_cast<int>(pile.bodies.size()), kBodies);
+  PileRun r = run(w, pile, hz, seconds);
+  std::printf(
+      "[pile %s] overlap %.2f mm (settled %.2f), in bowl %.2f mm (settled %.2f), "
+      "escaped %d, rms speed %.2e m/s, max spin %.2f rad/s, energy rise %.3f J, "
+      "%.2f ms/step, peak RSS %ld MB\n",
+      label(p).c_str(), 1e3 * r.worst.bodies, 1e3 * r.settled.bodies, 1e3 * r.worst.bowl,
+      1e3 * r.settled.bowl, int(r.worst.escaped), r.rms_speed_end, r.max_spin, r.energy_rise,
+      r.ms_per_step, r.peak_rss_kb / 1024);
+  r.worst.escaped = r.worst.escaped || r.settled.escaped;
+  return r;
+}
+
+class PileInBowl : public ::testing::TestWithParam<PileParam> {};
+
+// The settled pile and everything but the impacts' transient overlaps.
+TEST_P(PileInBowl, RestsWithoutPassingTheFloor) {
+  const PileRun r = dropAndRun(GetParam(), kSeconds);
+  EXPECT_FALSE(r.worst.escaped);
+  EXPECT_LE(r.settled.bowl, 0.010);
+  EXPECT_LE(r.settled.bodies, 0.010);
+  EXPECT_LE(r.rms_speed_end, 0.01);
+  EXPECT_GT(r.max_spin, 0.5);  // the bodies tumble
+  EXPECT_LE(r.energy_rise, 1e-3);
+  EXPECT_LE(r.peak_rss_kb, 300 * 1024);
+}
+
+class PileImpacts : public ::testing::TestWithParam<PileParam> {};
+
+// Impacts included, over the first 3 s: holds at 240 Hz; not yet at 60 Hz (issue 16
+// open: bodies landing on bodies already in contact sink 40 to 55 mm for a step or
+// two, the pile's rows unresolved within the solver's iterations).
+TEST_P(PileImpacts, OverlapsStayWithinTenMillimetres) {
+  const PileRun r = dropAndRun(GetParam(), 3.0);
+  EXPECT_LE(r.worst.bowl, 0.010);
+  EXPECT_LE(r.worst.bodies, 0.010);
+}
+
+std::string pileName(const ::testing::TestParamInfo<PileParam>& p) { return label(p.param); }
+
+INSTANTIATE_TEST_SUITE_P(
+    Models, PileInBowl,
+    ::testing::Values(PileParam(bullet::ContactModel::Potential, RotationMode::Input, 60.0),
+                      PileParam(bullet::ContactModel::Potential, RotationMode::Mix, 60.0),
+                      PileParam(bullet::ContactModel::Potential, RotationMode::Free, 60.0),
+                      PileParam(bullet::ContactModel::Manifold, RotationMode::Input, 60.0)),
+    pileName);
+
+INSTANTIATE_TEST_SUITE_P(Rates, PileImpacts,
+                         ::testing::Values(PileParam(bullet::ContactModel::Potential,
+                                                     RotationMode::Input, 240.0)),
+                         pileName);
+
+INSTANTIATE_TEST_SUITE_P(
+    DISABLED_Rates, PileImpacts,
+    ::testing::Values(PileParam(bullet::ContactModel::Potential, RotationMode::Input, 60.0),
+                      PileParam(bullet::ContactModel::Potential, RotationMode::Mix, 60.0),
+                      PileParam(bullet::ContactModel::Potential, RotationMode::Free, 60.0),
+                      PileParam(bullet::ContactModel::Manifold, RotationMode::Input, 60.0)),
+    pileName);
+
+}  // namespace
+}  // namespace sc::test

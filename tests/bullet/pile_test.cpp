@@ -25,8 +25,12 @@ namespace {
 
 constexpr double kMajor = 0.17, kMinor = 0.08;  // torus radii: 0.5 m across
 constexpr double kBowlInner = 1.2, kBowlOuter = 1.3;
-constexpr int kBodies = SC_TEST_SANITIZED ? 8 : 24;
-constexpr double kSeconds = SC_TEST_SANITIZED ? 3.0 : 10.0;
+// Sanitized builds run a short drop of a few bodies for memory errors and undefined
+// behaviour; rest and memory are the Release run's (ASan's shadow memory alone is
+// larger than the RSS bound, and 2 s is too short to rest).
+constexpr int kBodies = SC_TEST_SANITIZED ? 6 : 24;
+constexpr double kSeconds = SC_TEST_SANITIZED ? 2.0 : 10.0;
+constexpr double kImpactSeconds = SC_TEST_SANITIZED ? 1.0 : 3.0;
 constexpr double kSettledSeconds = 1.0;  // the pile at rest: the last second
 
 struct Pile {
@@ -203,9 +207,10 @@ TEST_P(PileInBowl, RestsWithoutPassingTheFloor) {
   EXPECT_FALSE(r.worst.escaped);
   EXPECT_LE(r.settled.bowl, 0.010);
   EXPECT_LE(r.settled.bodies, 0.010);
-  EXPECT_LE(r.rms_speed_end, 0.01);
   EXPECT_GT(r.max_spin, 0.5);  // the bodies tumble
   EXPECT_LE(r.energy_rise, 1e-3);
+  if (SC_TEST_SANITIZED) return;
+  EXPECT_LE(r.rms_speed_end, 0.01);
   EXPECT_LE(r.peak_rss_kb, 300 * 1024);
 }
 
@@ -215,7 +220,7 @@ class PileImpacts : public ::testing::TestWithParam<PileParam> {};
 // open: bodies landing on bodies already in contact sink 40 to 55 mm for a step or
 // two, the pile's rows unresolved within the solver's iterations).
 TEST_P(PileImpacts, OverlapsStayWithinTenMillimetres) {
-  const PileRun r = dropAndRun(GetParam(), 3.0);
+  const PileRun r = dropAndRun(GetParam(), kImpactSeconds);
   EXPECT_LE(r.worst.bowl, 0.010);
   EXPECT_LE(r.worst.bodies, 0.010);
 }

@@ -35,6 +35,10 @@ double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap
   // thousands of candidates, of which the nearest few decide).
   const double sweep = motion.dc.norm() + angle * reach_rho;
   double limit = 1.0;
+  // Candidates cut short at GroupPairQuery::kMaxContacts are complete only up to a
+  // smaller reach: the motion is advanced only as far as that covers.
+  const double covered = query.nearCoveredReach(motion.start);
+  if (covered < reach && sweep > 0.0) limit = std::clamp((covered - stop_gap) / sweep, 0.0, 1.0);
   for (const LeafContact& cand : scratch) {
     if (cand.gap > stop_gap + limit * sweep) break;
     if (cand.intersecting) continue;

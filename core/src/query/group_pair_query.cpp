@@ -399,6 +399,7 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
                                   double until) {
   for (int taken = 0; !heap.empty(); ++taken) {
     if (budget >= 0 && taken >= budget) return false;
+    if (policy.full()) return false;  // the queue kept: its front bounds what is missing
     const double front = heap.front().bound;
     if (front >= until && !policy.prunes(front)) return false;
     std::pop_heap(heap.begin(), heap.end(), Farther());
@@ -463,6 +464,7 @@ struct GroupPairQuery::DistancePolicy {
   bool prunes(double bound) const { return found ? bound >= best.gap : bound > max_distance; }
   double reach() const { return found ? best.gap : max_distance; }
   double splitWithin() const { return -1.0; }  // the order needs tight bounds
+  bool full() const { return false; }
   bool admits(const NodePair&) const { return true; }
   void offer(const LeafContact& c) {
     if (found && c.gap >= best.gap) return;
@@ -513,6 +515,9 @@ struct GroupPairQuery::ContactsPolicy {
   /// Every pair within the threshold is visited, in any order: a node pair known to
   /// be within it is split without its exact distance.
   double splitWithin() const { return threshold; }
+  /// At kMaxContacts the traversal stops with its queue kept: what it found includes
+  /// every pair nearer than the queue front's lower bound.
+  bool full() const { return out.size() >= kMaxContacts; }
   bool admits(const NodePair&) const { return true; }
   bool visit(const NodePair& p) {
     bool beyond = false;
@@ -546,6 +551,10 @@ void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
   ContactsPolicy policy{*this, threshold, out};
   traverse(policy);
   sortContacts(out);
+}
+
+double GroupPairQuery::nearCoveredReach(const Rigid& o_from_t) const {
+  return near_valid_ ? near_reach_ - displacementBound(near_pose_, o_from_t) : 0.0;
 }
 
 bool GroupPairQuery::nearCovers(const Rigid& o_from_t, double reach) const {
@@ -743,6 +752,7 @@ struct GroupPairQuery::IntersectPolicy {
   bool prunes(double bound) const { return bound > 0.0; }
   double reach() const { return 0.0; }
   double splitWithin() const { return -1.0; }
+  bool full() const { return false; }
   bool admits(const NodePair&) const { return true; }
   bool visit(const NodePair& p) {
     bool beyond = false;
@@ -806,6 +816,7 @@ struct GroupPairQuery::ToiPolicy {
   }
   double reach() const { return limit * reach_length + 0.5 * stop_gap; }
   double splitWithin() const { return -1.0; }
+  bool full() const { return false; }
   bool admits(const NodePair& p) const {
     // Swept bounding spheres: the target sphere's centre runs along a segment.
     const HullBvhNode& t = q.t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];

@@ -7,6 +7,7 @@
 // starts per node pair and the last closest leaf pair persist across calls.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -92,8 +93,15 @@ class GroupPairQuery {
   /// Seeded with the last call's closest pair.
   bool distance(const Rigid& o_from_t, double max_distance, LeafContact& best);
 
+  /// Pairs a contacts query gathers at most: two overlapping 10k-triangle meshes have
+  /// some 10^8 leaf pairs within a body's size, 13 GB of them. Beyond it a query stops
+  /// with every pair nearer than the lower bound of what is left in its queue (and
+  /// some farther ones); contactsNear() reports that bound (nearCoveredReach).
+  static constexpr std::size_t kMaxContacts = 16384;
+
   /// Every leaf pair with gap <= `threshold` (intersecting ones included), appended
-  /// to `out` after clearing it, nearest first (ties by leaf indices).
+  /// to `out` after clearing it, nearest first (ties by leaf indices); at most
+  /// kMaxContacts of them, every one nearer than where the cap stopped the query.
   void contacts(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
 
   /// contacts() for poses that differ by small motions, as a sliding proxy or a
@@ -103,6 +111,9 @@ class GroupPairQuery {
   /// every gap by at most d). Same output as contacts().
   void contactsNear(const Rigid& o_from_t, double threshold, double margin,
                     std::vector<LeafContact>& out);
+  /// How far the last contactsNear()'s answer is complete at o_from_t: at least its
+  /// threshold, unless kMaxContacts cut its pairs short.
+  double nearCoveredReach(const Rigid& o_from_t) const;
 
   /// Closest points of one leaf pair (GJK with its warm start).
   LeafContact pairAt(int t_leaf, int o_leaf, const Rigid& o_from_t);

@@ -488,5 +488,43 @@ TEST(PairCache, KeepsEntriesAndStaysBounded) {
   EXPECT_EQ(cache.at(99999 * 7919).hint_a, 0);
 }
 
+// Two overlapping soups of 200 triangles: 40,000 leaf pairs within the threshold,
+// more than kMaxContacts. Both queries keep kMaxContacts pairs, sorted (memory
+// bounded; two overlapping 10k-triangle meshes would hold 10^8), and contactsNear
+// says how far its answer is complete: every pair within that reach is kept.
+TEST(GroupPairQueryCap, ContactsAreCappedAndCompleteUpToTheReachTheyCover) {
+  test::Rng rng(0xCA9);
+  const ModelPtr a = modelOf(ModelKind::TriangleSoup, {randomSoup(rng, 200, 0.05, 0.3)});
+  const ModelPtr b = modelOf(ModelKind::TriangleSoup, {randomSoup(rng, 200, 0.05, 0.3)});
+  Part ta{a.get(), Rigid(), 1}, ob{b.get(), Rigid(), 2};
+  GroupPairQuery q;
+  q.bind(GroupView{&ta, 1, Placement()}, GroupView{&ob, 1, Placement()});
+  const std::size_t cap = GroupPairQuery::kMaxContacts;
+  ASSERT_GT(std::size_t(q.targetLeafCount()) * std::size_t(q.opponentLeafCount()), cap);
+  const Rigid pose;
+  const std::vector<double> gaps = BruteForce(q).gaps(pose);
+  const double threshold = 10.0;  // every pair
+  auto sorted = [](const std::vector<LeafContact>& got) {
+    return std::is_sorted(got.begin(), got.end(),
+                          [](const LeafContact& x, const LeafContact& y) { return x.gap < y.gap; });
+  };
+  std::vector<LeafContact> out;
+  q.contacts(pose, threshold, out);
+  EXPECT_EQ(out.size(), cap);
+  EXPECT_TRUE(sorted(out));
+  q.contactsNear(pose, threshold, 0.01, out);
+  EXPECT_EQ(out.size(), cap);
+  EXPECT_TRUE(sorted(out));
+  const double covered = q.nearCoveredReach(pose);
+  EXPECT_LT(covered, threshold);
+  EXPECT_GT(covered, 0.0);
+  const auto within = [covered](double g) { return g <= covered; };
+  const long want = std::count_if(gaps.begin(), gaps.end(), within);
+  const long got =
+      std::count_if(out.begin(), out.end(), [&](const LeafContact& c) { return within(c.gap); });
+  EXPECT_GT(want, 0);
+  EXPECT_EQ(got, want);
+}
+
 }  // namespace
 }  // namespace sc::detail

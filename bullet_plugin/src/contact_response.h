@@ -44,6 +44,13 @@ struct RowPoint {
   bool exact = false;  ///< a corner of a convex piece, measured on a convex opponent
 };
 
+/// A plane in world coordinates: outward unit normal and offset.
+struct WorldPlane {
+  Vec3 normal = Vec3::UnitY();
+  double offset = 0.0;
+  double distance(const Vec3& p) const { return normal.dot(p) - offset; }
+};
+
 /// Candidates kept per direction, deepest first (Bullet's manifold keeps 4 per pair:
 /// the deepest and the widest polygon among what it is given).
 constexpr int kMaxRowPoints = 16;

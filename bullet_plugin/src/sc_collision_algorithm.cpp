@@ -115,32 +115,35 @@ double reduced(double a, double b) {
 }
 
 /// A face plane of a piece in world coordinates: outward unit normal, offset.
-struct WorldPlane {
-  Vec3 normal = Vec3::UnitY();
-  double offset = 0.0;
-  double distance(const Vec3& p) const { return normal.dot(p) - offset; }
-};
+using detail::WorldPlane;
 
-/// The reference face of a convex piece O for a convex set of points (T's corners,
-/// world): the face plane along whose normal the points penetrate least (the
-/// separating-axis test over O's face normals, as box-box clipping chooses it).
-/// Stacked boxes of one size read the face below, not a side whose plane a corner
-/// also touches; the core's normal of the pair plays no part (an edge-edge normal
-/// or a face diagonal reported as an edge would tilt every row).
-WorldPlane referenceFace(const Piece& piece, const Rigid& world_from_piece,
-                         const std::vector<Vec3>& points) {
+/// The face planes of a convex piece placed by `world_from_piece` (world), into
+/// `planes` (cleared); degenerate triangles give none.
+void facePlanes(const Piece& piece, const Rigid& world_from_piece,
+                std::vector<WorldPlane>& planes) {
   const MeshData& mesh = piece.mesh();
-  WorldPlane best;
-  double best_gap = -kInfinity;
+  planes.clear();
   for (const Tri& t : mesh.triangles) {
     const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
     const Vec3 n = (mesh.vertices[static_cast<std::size_t>(t[1])] - a)
                        .cross(mesh.vertices[static_cast<std::size_t>(t[2])] - a);
     const double len = n.norm();
     if (!(len > 0.0)) continue;
-    WorldPlane plane;
-    plane.normal = world_from_piece.rotation * (n / len);
-    plane.offset = plane.normal.dot(world_from_piece * a);
+    const Vec3 normal = world_from_piece.rotation * (n / len);
+    planes.push_back({normal, normal.dot(world_from_piece * a)});
+  }
+}
+
+/// The reference face of a convex piece O (its `planes`) for a convex set of points
+/// (T's corners, world): the face plane along whose normal the points penetrate least
+/// (the separating-axis test over O's face normals, as box-box clipping chooses it).
+/// Stacked boxes of one size read the face below, not a side whose plane a corner
+/// also touches; the core's normal of the pair plays no part (an edge-edge normal
+/// or a face diagonal reported as an edge would tilt every row).
+WorldPlane referenceFace(const std::vector<WorldPlane>& planes, const std::vector<Vec3>& points) {
+  WorldPlane best;
+  double best_gap = -kInfinity;
+  for (const WorldPlane& plane : planes) {
     double gap = kInfinity;
     for (const Vec3& p : points) gap = std::min(gap, plane.distance(p));
     if (gap > best_gap) {
@@ -151,19 +154,11 @@ WorldPlane referenceFace(const Piece& piece, const Rigid& world_from_piece,
   return best;
 }
 
-/// Signed distance of `p` from a convex piece: the largest over its face planes
-/// (< 0 inside).
-double convexSeparation(const Piece& piece, const Rigid& world_from_piece, const Vec3& p) {
-  const MeshData& mesh = piece.mesh();
-  const Vec3 q = world_from_piece.inverse() * p;
+/// Signed distance of `p` from a convex piece (its `planes`): the largest over its
+/// face planes (< 0 inside).
+double convexSeparation(const std::vector<WorldPlane>& planes, const Vec3& p) {
   double best = -kInfinity;
-  for (const Tri& t : mesh.triangles) {
-    const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
-    const Vec3 n = (mesh.vertices[static_cast<std::size_t>(t[1])] - a)
-                       .cross(mesh.vertices[static_cast<std::size_t>(t[2])] - a);
-    const double len = n.norm();
-    if (len > 0.0) best = std::max(best, n.dot(q - a) / len);
-  }
+  for (const WorldPlane& plane : planes) best = std::max(best, plane.distance(p));
   return best;
 }
 
@@ -188,7 +183,7 @@ const Piece* pieceOf(const Side& s, int index) {
 /// n) is the opponent's surface.
 void addSupportCorners(const DirectedResult& r, const Side& t, const Side& o, const Vec3& shift,
                        double threshold, std::vector<Vec3>& corners,
-                       std::vector<detail::RowPoint>& points) {
+                       std::vector<WorldPlane>& planes, std::vector<detail::RowPoint>& points) {
   const Piece* tp = pieceOf(t, r.target_piece);
   if (tp == nullptr || !wholeConvex(t)) return;
   const Piece* op = pieceOf(o, r.opponent_piece);
@@ -206,11 +201,11 @@ void addSupportCorners(const DirectedResult& r, const Side& t, const Side& o, co
       if (face.distance(p) < threshold) points.push_back({p, face.normal, face.distance(p)});
     return;
   }
-  const Rigid world_from_o = o.view.placement.worldFromLocal();
-  const WorldPlane face = referenceFace(*op, world_from_o, corners);
+  facePlanes(*op, o.view.placement.worldFromLocal(), planes);
+  const WorldPlane face = referenceFace(planes, corners);
   for (const Vec3& p : corners) {
     const double sep = face.distance(p);
-    if (sep < threshold && convexSeparation(*op, world_from_o, p) < threshold)
+    if (sep < threshold && convexSeparation(planes, p) < threshold)
       points.push_back({p, face.normal, sep, true});
   }
 }
@@ -289,6 +284,7 @@ struct DirectionState {
   std::vector<detail::RowPoint>& points;
   std::vector<ContactPoint>& contacts;
   std::vector<Vec3>& corners;
+  std::vector<WorldPlane>& planes;
   double dt;
 };
 
@@ -297,7 +293,7 @@ struct DirectionState {
 void gatherPoints(int dir, const Side& t, const Side& o, const Vec3& shift, double threshold,
                   double tolerance, DirectionState& d) {
   const DirectedResult& r = d.rows_out[dir];
-  addSupportCorners(r, t, o, shift, threshold, d.corners, d.points);
+  addSupportCorners(r, t, o, shift, threshold, d.corners, d.planes, d.points);
   const std::size_t exact = d.points.size();  // corner rows measured on a convex piece
   if (!wholeConvex(t)) {
     // Non-convex: the core's contacts within the threshold, each a leaf pair.
@@ -485,7 +481,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   DirectionState state{*plugin_, tracker_,   rows_out == out ? tracker_ : rows_tracker_,
                        rows_out, spring_on_, in_contact_,
                        points_,  contacts_,  corners_,
-                       dt};
+                       planes_,  dt};
   candidates_.clear();
   for (int dir = 0; dir < 2; ++dir) {
     points_.clear();

@@ -16,6 +16,7 @@ namespace sc::bullet {
 class Plugin;
 namespace detail {
 struct RowPoint;
+struct WorldPlane;
 struct RowCandidate;
 struct ContactCluster;
 }  // namespace detail
@@ -55,10 +56,11 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   /// Per direction: penetrating in the last step (only a fresh impact is projected).
   bool in_contact_[2] = {false, false};
   PairTracker tracker_;
-  PairTracker rows_tracker_;              ///< Input-mode rows of non-convex pairs in Mix and Free
-  std::vector<ContactPoint> contacts_;    ///< the core's contacts of a direction (reused)
-  std::vector<detail::RowPoint> points_;  ///< a direction's row points (reused)
-  std::vector<Vec3> corners_;             ///< a convex target piece's corners (reused)
+  PairTracker rows_tracker_;                ///< Input-mode rows of non-convex pairs in Mix and Free
+  std::vector<ContactPoint> contacts_;      ///< the core's contacts of a direction (reused)
+  std::vector<detail::RowPoint> points_;    ///< a direction's row points (reused)
+  std::vector<detail::WorldPlane> planes_;  ///< a convex opponent's face planes (reused)
+  std::vector<Vec3> corners_;               ///< a convex target piece's corners (reused)
   std::vector<detail::RowCandidate> candidates_;  ///< both directions' rows (reused)
   std::vector<int> labels_;                       ///< clustering scratch (reused)
   std::vector<detail::ContactCluster> clusters_;  ///< the step's patches (reused)

@@ -8,6 +8,7 @@
 
 #include "geometry/convex_polytope.h"
 #include "smartcollision/model.h"
+#include "support/sample_meshes.h"
 #include "support/test_support.h"
 
 namespace sc::test {
@@ -47,12 +48,8 @@ struct ConvexShape {
 /// Hull of 4..60 random points, a box or a tetrahedron, of about `size`.
 ConvexShape randomConvexShape(Rng& rng, double size);
 
-/// Closed hemispherical bowl (opening up, rim at y = 0): outer radius `outer`, inner
-/// `inner`, `rings` latitude rings per surface and `segments` around.
-MeshData bowlMesh(double inner, double outer, int rings, int segments);
-/// Closed torus around the y axis: radii `major` (of the tube's centre line) and
-/// `minor` (of the tube), `around` x `tube` quads, outward.
-MeshData torusMesh(double major, double minor, int around, int tube);
+using samples::bowlMesh;
+using samples::torusMesh;
 /// A CGAL mesh from SC_MESH_DIR (e.g. "cow.off") scaled so that its largest extent
 /// is `size`, centred on its bounds; empty when it cannot be read.
 MeshData scaledOff(const std::string& name, double size);

@@ -388,6 +388,46 @@ ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructio
               modelOf(*plugin, body1->getCollisionShape())},
       closest_points_(closest_points) {
   if (closest_points_) manifold_ = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
+  const btCollisionObjectWrapper* wraps[2] = {body0, body1};
+  for (int i = 0; i < 2; ++i) {
+    if (!models_[i]) continue;
+    const Aabb& b = models_[i]->bounds();  // the farthest corner bounds every vertex
+    reach_[i] = b.min.cwiseAbs().cwiseMax(b.max.cwiseAbs()).norm() +
+                roundingRadius(wraps[i]->getCollisionShape());
+  }
+}
+
+bool ScCollisionAlgorithm::stillApart(const btCollisionObjectWrapper* const wraps[2],
+                                      double threshold) const {
+  if (!(queried_gap_ > threshold)) return false;
+  double bound = 0.0;  // how much closer the two surfaces can have come
+  for (int i = 0; i < 2; ++i) {
+    const btTransform& now = wraps[i]->getWorldTransform();
+    bound += double((now.getOrigin() - queried_[i].getOrigin()).length());
+    // A point at distance r from the origin moves by the chord 2 r sin(angle / 2).
+    const double c =
+        std::min(1.0, std::abs(double(now.getRotation().dot(queried_[i].getRotation()))));
+    bound += 2.0 * reach_[i] * std::sqrt(1.0 - c * c);
+  }
+  // The poses are Bullet's floats: keep a margin of their rounding.
+  const double rounding = 1e-6 * (reach_[0] + reach_[1] + queried_gap_);
+  return bound + rounding < queried_gap_ - threshold;
+}
+
+void ScCollisionAlgorithm::rememberQuery(const btCollisionObjectWrapper* const wraps[2],
+                                         const DirectedResult out[2], const Directions& dirs) {
+  ever_queried_ = true;
+  queried_gap_ = -1.0;
+  double gap = kInfinity;
+  for (int dir = 0; dir < 2; ++dir) {
+    if (!(dir == 0 ? dirs.a_target : dirs.b_target)) continue;
+    const DirectedResult& r = out[dir];
+    if (r.code != ErrorCode::Ok || r.penetrating() || !(r.distance >= 0.0)) return;
+    gap = std::min(gap, r.distance);
+  }
+  if (!(gap < kInfinity)) return;
+  for (int i = 0; i < 2; ++i) queried_[i] = wraps[i]->getWorldTransform();
+  queried_gap_ = gap;
 }
 
 ScCollisionAlgorithm::~ScCollisionAlgorithm() {
@@ -441,6 +481,18 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   for (int i = 0; i < 2; ++i) makeSide(wraps[i], models_[i].get(), sides[i]);
 
   const PluginSettings& ps = plugin_->settings();
+  StepStats& stats = plugin_->stats();
+  const double threshold = double(std::min(
+      objects_[0]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
+      objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
+  // After the integration only a fresh impact needs a query (a pair in contact is
+  // its rows' to hold until the next step's detection).
+  if (!closest_points_ && plugin_->impactPass() && ever_queried_ && !(queried_gap_ >= 0.0)) return;
+  if (!closest_points_ && stillApart(wraps, threshold)) {
+    ++stats.pairs;
+    ++stats.skipped;
+    return;
+  }
   const ContactSettings contact = plugin_->pairSettings(objects_[0], objects_[1]);
   const SceneSettings query = pairQuerySettings(ps.query, contact, sides, double(info.m_timeStep));
   Directions dirs;
@@ -449,6 +501,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   DirectedResult out[2];
   tracker_.update(sides[0].view, sides[1].view, dirs, query, out);
   for (int dir = 0; dir < 2; ++dir) inflate(out[dir], sides[dir].radius, sides[1 - dir].radius);
+  rememberQuery(wraps, out, dirs);
 
   if (closest_points_) {
     result->setPersistentManifold(manifold_);
@@ -458,11 +511,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
 
   const double dt = double(info.m_timeStep);
   const detail::PairSpring spring = detail::pairSpring(sides[0].body, sides[1].body, contact, dt);
-  StepStats& stats = plugin_->stats();
   ++stats.pairs;
-  const double threshold = double(std::min(
-      objects_[0]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
-      objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
   const double row_threshold = detail::rowThreshold(spring, ps, threshold);
   const int projected_before = stats.projected;
   // Rows from an Input-mode tracker when the query turns and a side is non-convex

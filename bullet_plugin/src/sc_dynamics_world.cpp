@@ -2,6 +2,8 @@
 // ScDynamicsWorld: collision detection, the plugin's direct corrections, swept AABBs.
 #include "smartcollision/bullet/sc_dynamics_world.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace sc::bullet {
@@ -43,18 +45,34 @@ void ScDynamicsWorld::performDiscreteCollisionDetection() {
 void ScDynamicsWorld::integrateTransforms(btScalar timeStep) {
   btDiscreteDynamicsWorld::integrateTransforms(timeStep);
   if (!plugin_ || !movedFar()) return;
-  // A body that moved far this step may now be in or past another: detect again, so
-  // an impact's projection puts it back on the entry side within the step, not one
-  // frame later (the next step's rows then stop it).
+  // A body that moved beyond its speculative reach this step may now be in or past
+  // another: detect again, so that an impact's projection puts it back on the entry
+  // side within the step, not one frame later. Pairs apart by more than their motion
+  // and pairs already in contact are not queried again (Plugin::setImpactPass). The
+  // step's statistics stay the first detection's, plus this pass's corrections.
+  const StepStats first = plugin_->stats();
+  plugin_->setImpactPass(true);
   performDiscreteCollisionDetection();
+  plugin_->setImpactPass(false);
+  const StepStats pass = plugin_->stats();
+  StepStats& stats = plugin_->stats();
+  stats = first;
+  stats.projected += pass.projected;
+  stats.recovering += pass.recovering;
+  stats.max_depth = std::max(stats.max_depth, pass.max_depth);
+  stats.max_rotation = std::max(stats.max_rotation, pass.max_rotation);
 }
 
 bool ScDynamicsWorld::movedFar() const {
   for (const auto& [object, pose] : last_poses_) {
-    btVector3 lo, hi;
-    object->getCollisionShape()->getAabb(pose, lo, hi);
-    const btScalar moved = (object->getWorldTransform().getOrigin() - pose.getOrigin()).length();
-    if (moved > kFarFraction * (hi - lo).length()) return true;
+    const btCollisionShape* shape = object->getCollisionShape();
+    const btTransform& now = object->getWorldTransform();
+    // Bound on any surface point's motion: the origin's, plus the chord a rotation
+    // sweeps at the shape's bounding radius.
+    const double c = std::min(1.0, std::abs(double(now.getRotation().dot(pose.getRotation()))));
+    const double moved = double((now.getOrigin() - pose.getOrigin()).length()) +
+                         2.0 * double(shape->getAngularMotionDisc()) * std::sqrt(1.0 - c * c);
+    if (moved > double(shape->getContactBreakingThreshold(gContactBreakingThreshold))) return true;
   }
   return false;
 }

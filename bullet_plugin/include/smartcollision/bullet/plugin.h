@@ -29,6 +29,9 @@ struct StepStats {
   /// step at the current approach speed (the rows stop a body at the surface, so an
   /// impact shows here before any penetration does)
   int touching = 0;
+  /// pairs not queried: apart at their last query by more than the bodies could have
+  /// moved towards each other since (a conservative bound), so nothing can respond
+  int skipped = 0;
 };
 
 class Plugin {
@@ -75,6 +78,11 @@ class Plugin {
   void beginStep();
   /// Applies and clears the buffered impulses and projections.
   void applyImpulses();
+  /// Set by ScDynamicsWorld around its detection after the integration: only pairs
+  /// that may have a fresh impact (apart at their last query, by less than the bodies
+  /// could have moved since) are queried then; pairs in contact keep their rows.
+  void setImpactPass(bool on) { impact_pass_ = on; }
+  bool impactPass() const { return impact_pass_; }
 
   StepStats& stats() { return stats_; }
   const StepStats& stats() const { return stats_; }
@@ -104,6 +112,7 @@ class Plugin {
   std::unordered_map<btRigidBody*, btVector3> projections_;  ///< reused every substep
   StepStats stats_;
   bool world_attached_ = false;
+  bool impact_pass_ = false;
   std::unique_ptr<CreateFuncs> create_funcs_;
 };
 

@@ -55,6 +55,13 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   bool spring_on_[2] = {false, false};
   /// Per direction: penetrating in the last step (only a fresh impact is projected).
   bool in_contact_[2] = {false, false};
+  /// The last query's poses and its gap (the smallest distance of its directions, or
+  /// -1 when not apart): while the bodies' motion since then is bounded by less than
+  /// the gap minus the threshold, no query can find anything to respond to.
+  btTransform queried_[2];
+  double queried_gap_ = -1.0;
+  bool ever_queried_ = false;
+  double reach_[2] = {0.0, 0.0};  ///< per side: farthest surface point from its origin
   PairTracker tracker_;
   PairTracker rows_tracker_;                ///< Input-mode rows of non-convex pairs in Mix and Free
   std::vector<ContactPoint> contacts_;      ///< the core's contacts of a direction (reused)
@@ -68,6 +75,11 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   /// The manifold for a patch of normal `normal`: the one that held the same patch
   /// last step, else an empty one; marks it taken.
   btPersistentManifold* manifoldFor(const Vec3& normal, bool taken[kManifolds]);
+  /// True when the pair is still surely apart by `threshold` (see queried_gap_).
+  bool stillApart(const btCollisionObjectWrapper* const wraps[2], double threshold) const;
+  /// Keeps the poses and the gap of this step's query.
+  void rememberQuery(const btCollisionObjectWrapper* const wraps[2], const DirectedResult out[2],
+                     const Directions& dirs);
 };
 
 }  // namespace sc::bullet

@@ -40,12 +40,11 @@ class ScDynamicsWorld : public btDiscreteDynamicsWorld {
   /// to the pose of the last detection: a body that crossed a thin wall within one
   /// step keeps its pair with the wall, whose dynamic PD then sees the crossing.
   void updateAabbs() override;
-  /// Bullet's integration; then, when a body moved more than kFarFraction of its
-  /// AABB's diagonal since the last detection, the detection again (see .cpp).
+  /// Bullet's integration; then, when a body moved further than its contact
+  /// threshold since the last detection, the plugin's impact pass (see .cpp).
   void integrateTransforms(btScalar timeStep) override;
 
  private:
-  static constexpr btScalar kFarFraction = btScalar(0.05);
   bool movedFar() const;
   std::shared_ptr<Plugin> plugin_;
   std::unordered_map<const btCollisionObject*, btTransform> last_poses_;

@@ -77,12 +77,26 @@ Vec3 impactProjection(const DirectedResult& r, const BodySide& t, const BodySide
   if (!(depth > tolerance)) return Vec3::Zero();
   const Vec3 u = -r.tpdv / depth;  // out of the opponent
   const btVector3 p = toBt(r.point_on_opponent);
-  const double approach = -double((t.velocityAt(p) - o.velocityAt(p)).dot(toBt(u)));
+  const double closing_t = -double(t.velocityAt(p).dot(toBt(u)));  // t towards o
+  const double approach = closing_t + double(o.velocityAt(p).dot(toBt(u)));
   // Resting and slowly pressed contacts are the rows' to hold; only a body that came
   // in by more than the tolerance within this step is put back.
   if (!(approach * dt > tolerance)) return Vec3::Zero();
-  const double share = t.inv_mass / (t.inv_mass + o.inv_mass);
+  // Each body undoes its own part of the approach: a body landing on a resting one is
+  // put back whole, and the resting one is not pushed into its own supports.
+  const double share = o.inv_mass > 0.0 ? std::clamp(closing_t / approach, 0.0, 1.0) : 1.0;
   return -share * r.tpdv;
+}
+
+btVector3 impactImpulse(const Vec3& shift, const BodySide& t, const BodySide& o) {
+  if (t.body == nullptr || shift.isZero() || !(t.inv_mass > 0.0)) return btVector3(0, 0, 0);
+  const btVector3 u = toBt(shift.normalized());  // out of the opponent
+  const btVector3 vo =
+      o.body != nullptr ? o.velocityAt(o.body->getCenterOfMassPosition()) : o.velocityAt(o.center);
+  const double closing = -double((t.body->getLinearVelocity() - vo).dot(u));
+  if (!(closing > 0.0)) return btVector3(0, 0, 0);
+  const double reduced_mass = 1.0 / (t.inv_mass + o.inv_mass);
+  return u * btScalar(reduced_mass * closing);
 }
 
 void shiftPoints(std::vector<RowPoint>& points, const Vec3& shift) {

@@ -78,10 +78,18 @@ PairSpring pairSpring(const BodySide& a, const BodySide& b, const ContactSetting
 
 /// Projection of an impact: when the target approached the opponent by more than
 /// `tolerance` in this step and the result is penetrating, the target's share of
-/// -TPDV (by inverse mass) brings it back to the entry side at once; zero otherwise.
-/// The share counts only dynamic bodies; its approach speed is left to the rows.
+/// -TPDV brings it back to the entry side at once; zero otherwise. The share is the
+/// target's part of the approach speed at the contact (all of it against a static
+/// opponent); its approach speed is impactImpulse's and the rows'.
 Vec3 impactProjection(const DirectedResult& r, const BodySide& t, const BodySide& o, double dt,
                       double tolerance);
+
+/// The plastic impulse on the target of a projected impact (`shift` from
+/// impactProjection): cancels its share of the centres of mass' approach along the
+/// shift, as a restitution-0 collision through the centres would. The rows alone would
+/// absorb a fast approach in one sequential solve, unevenly across their points, and
+/// send the body off spinning; this leaves them only the residual.
+btVector3 impactImpulse(const Vec3& shift, const BodySide& t, const BodySide& o);
 
 /// Moves the points with the target by `shift`: separations grow by normal . shift.
 void shiftPoints(std::vector<RowPoint>& points, const Vec3& shift);

@@ -370,7 +370,7 @@ void respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
       fresh ? detail::impactProjection(r, t.body, o.body, dt, tolerance) : Vec3::Zero();
   if (!shift.isZero()) {
     ++stats.projected;
-    detail::deliver(d.plugin, t.body, o.body, btVector3(0, 0, 0), shift);
+    detail::deliver(d.plugin, t.body, o.body, detail::impactImpulse(shift, t.body, o.body), shift);
   }
   gatherPoints(dir, t, o, shift, threshold, tolerance, d);
 }

@@ -155,7 +155,8 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                            : Vec3::Zero();
   if (!shift.isZero()) {
     ++stats.projected;
-    detail::deliver(*plugin_, target, plane_side, btVector3(0, 0, 0), shift);
+    detail::deliver(*plugin_, target, plane_side, detail::impactImpulse(shift, target, plane_side),
+                    shift);
   }
   points_.clear();
   cornerPoints(plane, t, hull, shift, threshold, points_);

@@ -106,15 +106,16 @@ sc::Status readPosition(const std::vector<std::string_view>& tokens, std::size_t
   return sc::Status::success();
 }
 
-/// The polygon `ids` fanned into triangles; every id must name one of `count` vertices.
+/// The polygon `ids` fanned into triangles; every id must name one of `count` vertices
+/// (messages show ids plus `shown_base`: 1 for OBJ's 1-based indices).
 sc::Status addPolygon(const std::vector<long long>& ids, long long count, const std::string& what,
-                      Polygons& out) {
+                      Polygons& out, int shown_base = 0) {
   if (ids.size() < 3)
     return bad(what + " has " + str(static_cast<long long>(ids.size())) + " corners (at least 3)");
   for (long long id : ids)
     if (id < 0 || id >= count)
-      return bad(what + " refers to vertex " + str(id) + ", out of range (" + str(count) +
-                 " vertices)");
+      return bad(what + " refers to vertex " + str(id + shown_base) + ", out of range (" +
+                 str(count) + " vertices)");
   for (std::size_t k = 1; k + 1 < ids.size(); ++k)
     out.triangles.push_back(
         {static_cast<int>(ids[0]), static_cast<int>(ids[k]), static_cast<int>(ids[k + 1])});
@@ -637,7 +638,7 @@ sc::Status readObj(const char* data, std::size_t size, Polygons& out) {
   for (std::size_t f = 0; 4 * f < face_ids.size(); ++f) {
     const long long* ids = &face_ids[4 * f];
     corner_ids.assign(ids, ids + 3);
-    if (sc::Status s = addPolygon(corner_ids, count, "the face on line " + str(ids[3]), out);
+    if (sc::Status s = addPolygon(corner_ids, count, "the face on line " + str(ids[3]), out, 1);
         !s.ok())
       return s;
   }

@@ -857,8 +857,8 @@ bool parse(int argc, char** argv, Options& o) {
       o.scene = v;
     } else if (a == "--device" && value(v)) {
       const std::string script = "script:";  // an installed script is found by its name
-      o.device = v.rfind(script, 0) == 0 ? script + sc::demo::demoScript(v.substr(script.size()))
-                                         : v;
+      o.device =
+          v.rfind(script, 0) == 0 ? script + sc::demo::demoScript(v.substr(script.size())) : v;
     } else if (a == "--physics-hz" && value(v)) {
       o.physics_hz = std::atof(v.c_str());
     } else if (a == "--wrench-log" && value(v)) {

@@ -132,8 +132,8 @@ int main(int argc, char** argv) {
       sc::buildPiece(kind, std::move(imported.value().mesh), build);
   bar.finish();
   if (!piece.hasValue()) {
-    std::fprintf(stderr, "sc-preprocess: %s: %s\n", sc::describe(piece.status().code()),
-                 piece.status().message().c_str());
+    std::fprintf(stderr, "sc-preprocess: '%s': %s: %s\n", options.mesh.c_str(),
+                 sc::describe(piece.status().code()), piece.status().message().c_str());
     return kExitBadInput;
   }
   const sc::PieceStats& s = piece.value()->stats();

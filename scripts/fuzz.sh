@@ -7,9 +7,11 @@
 #        (defaults: 20 and build-asan, the sanitizer build of scripts/test.sh)
 #        SC_FUZZ_SEED=N fixes libFuzzer's seed (scripts/test.sh uses 1, so that the CI
 #        explores the same inputs on every run; unset, each run explores new ones).
+#        SC_FUZZ_TIMEOUT=N: one input running over N seconds fails (default 15).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-20}"
+timeout="${SC_FUZZ_TIMEOUT:-15}"
 seed_option=()
 [[ -n "${SC_FUZZ_SEED:-}" ]] && seed_option=(-seed="$SC_FUZZ_SEED")
 build="$(cd "${2:-$root/build-asan}" && pwd)"
@@ -42,7 +44,7 @@ for exe in "${targets[@]}"; do
   supp="$root/tests/fuzz/$name.lsan.supp"
   [[ -f "$supp" ]] && lsan=(LSAN_OPTIONS="suppressions=$supp:print_suppressions=0")
   # -timeout: one input taking this long is a failure (a hang or runaway loop).
-  if env "${lsan[@]}" "$exe" "$scratch/$name" "${seed_option[@]}" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2560 \
+  if env "${lsan[@]}" "$exe" "$scratch/$name" "${seed_option[@]}" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2560 \
        -print_final_stats=1 -artifact_prefix="$artifacts/$name/" >"$log" 2>&1; then
     runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
     secs="$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)"

@@ -2,6 +2,8 @@
 // Virtual coupling, its gains and passivity check, the energy monitor and pose scripts.
 #include "smartcollision/bullet/virtual_coupling.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -274,6 +276,10 @@ Result<PoseScript> PoseScript::parse(const std::string& text) {
 }
 
 Result<PoseScript> PoseScript::load(const std::string& path) {
+  // Opening a FIFO for reading would wait for a writer: only regular files are read.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    return Status(ErrorCode::File, "pose script " + path + " is not a regular file");
   std::ifstream f(path);
   if (!f) return Status(ErrorCode::File, "cannot read pose script " + path);
   std::ostringstream text;

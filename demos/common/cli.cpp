@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "cli.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 
@@ -36,6 +39,37 @@ bool emitMetrics(const std::string& metrics, const std::string& path) {
   if (f == nullptr) return false;
   std::fputs(metrics.c_str(), f);
   return std::fclose(f) == 0;
+}
+
+namespace {
+
+bool isFile(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/// <folder of the running executable>/<SC_DEMO_DATA_FROM_BIN>/<kind>/<file>, or ""
+/// when /proc/self/exe cannot be read.
+std::string installedData(const std::string& kind, const std::string& file) {
+  char exe[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (n <= 0) return "";
+  const std::string path(exe, static_cast<std::size_t>(n));
+  const std::string base = file.substr(file.find_last_of('/') + 1);
+  return path.substr(0, path.find_last_of('/') + 1) + SC_DEMO_DATA_FROM_BIN "/" + kind + "/" + base;
+}
+
+}  // namespace
+
+std::string demoMesh(const std::string& file) {
+  const std::string installed = installedData("meshes", file);
+  return isFile(installed) ? installed : std::string(SC_DEMO_MESH_DIR "/") + file;
+}
+
+std::string demoScript(const std::string& path) {
+  if (isFile(path)) return path;
+  const std::string installed = installedData("scripts", path);
+  return isFile(installed) ? installed : path;
 }
 
 }  // namespace sc::demo

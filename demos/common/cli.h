@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Command-line pieces every demo shares: the headless options and the metrics output.
+// Command-line pieces every demo shares: the headless options, the metrics output and
+// where the demos' data files are.
 #pragma once
 
 #include <string>
@@ -24,5 +25,15 @@ bool readHeadlessOption(int argc, char** argv, int& i, HeadlessOptions& o);
 /// Prints `metrics` and writes them to `path` unless it is empty; false when the file
 /// cannot be written.
 bool emitMetrics(const std::string& metrics, const std::string& path);
+
+/// A mesh the demos ship (`file`, e.g. "bunny00.off"): the installed copy
+/// (<executable>/../share/smartcollision/meshes/, found from /proc/self/exe) when there
+/// is one, else the copy in the source tree the demo was built from (.meshes/,
+/// extracted by scripts/setup.sh).
+std::string demoMesh(const std::string& file);
+
+/// A script named on the command line: `path` when it exists, else the installed copy
+/// of its file name (<executable>/../share/smartcollision/scripts/), else `path`.
+std::string demoScript(const std::string& path);
 
 }  // namespace sc::demo

@@ -586,9 +586,9 @@ class Demo {
     fixed_ = addRigid(*cup, 0.0, btTransform::getIdentity());
     fixed_mesh_ = drawMeshOf(*cup);
     fixed_triangles_ = cup->indices().size() / 3;
-    sc::MeshData bunny = sc::demo::readOff(SC_DEMO_MESH_DIR "/bunny00.off");
-    if (bunny.triangles.empty())
-      fail("cannot read " SC_DEMO_MESH_DIR "/bunny00.off (run scripts/setup.sh)");
+    const std::string bunny_file = sc::demo::demoMesh("bunny00.off");
+    sc::MeshData bunny = sc::demo::readOff(bunny_file);
+    if (bunny.triangles.empty()) fail("cannot read " + bunny_file + " (run scripts/setup.sh)");
     bunny = normalised(std::move(bunny), 0.1);
     auto tool = makeShape(bunny, sc::ModelKind::ClosedPolyhedron);
     if (!tool) tool = makeShape(bunny, sc::ModelKind::TriangleSoup);
@@ -856,7 +856,9 @@ bool parse(int argc, char** argv, Options& o) {
     if (a == "--scene" && value(v) && (v == "peg" || v == "cavity")) {
       o.scene = v;
     } else if (a == "--device" && value(v)) {
-      o.device = v;
+      const std::string script = "script:";  // an installed script is found by its name
+      o.device =
+          v.rfind(script, 0) == 0 ? script + sc::demo::demoScript(v.substr(script.size())) : v;
     } else if (a == "--physics-hz" && value(v)) {
       o.physics_hz = std::atof(v.c_str());
     } else if (a == "--wrench-log" && value(v)) {

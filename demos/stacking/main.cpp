@@ -313,14 +313,15 @@ class Demo {
     const char* names[1] = {"knot1"};
     std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> kinds;
     for (const char* name : names) {
-      sc::MeshData mesh = sc::demo::readOff(std::string(SC_DEMO_MESH_DIR "/") + name + ".off");
+      sc::MeshData mesh = sc::demo::readOff(sc::demo::demoMesh(std::string(name) + ".off"));
       auto shape = mesh.triangles.empty() ? nullptr : makeShape(normalised(std::move(mesh), 0.5));
       if (!shape) continue;
       kinds.push_back(shape);
       mesh_draw_.push_back(std::make_unique<sc::demo::DrawMesh>(drawMeshOf(*shape)));
     }
     if (kinds.empty()) {
-      std::fprintf(stderr, "no CGAL mesh found in %s\n", SC_DEMO_MESH_DIR);
+      std::fprintf(stderr, "cannot read %s (run scripts/setup.sh)\n",
+                   sc::demo::demoMesh("knot1.off").c_str());
       std::exit(1);
     }
     unsigned seed = 7;
@@ -347,8 +348,8 @@ class Demo {
   void addMeshes() {
     std::vector<std::string> paths = options_.meshes;
     if (paths.empty())
-      paths = {SC_DEMO_MESH_DIR "/fandisk.off", SC_DEMO_MESH_DIR "/elephant.off",
-               SC_DEMO_MESH_DIR "/elephant.off", SC_DEMO_MESH_DIR "/elephant.off"};
+      paths = {sc::demo::demoMesh("fandisk.off"), sc::demo::demoMesh("elephant.off"),
+               sc::demo::demoMesh("elephant.off"), sc::demo::demoMesh("elephant.off")};
     double top = 0.0;
     for (std::size_t i = 0; i < paths.size(); ++i) {
       sc::MeshData mesh = sc::demo::readOff(paths[i]);

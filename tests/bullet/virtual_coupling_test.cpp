@@ -3,9 +3,15 @@
 // sliding contact, and the pose-script parser.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <string>
 
 #include "bullet_world.h"
@@ -260,6 +266,26 @@ TEST(VirtualCouplingTest, PoseScriptInterpolates) {
   EXPECT_NEAR(bullet::rotationVector(mid.orientation).z(), kPi / 2, 1e-9);
   EXPECT_NEAR((s.value().sample(-1).position).norm(), 0.0, 1e-12);
   EXPECT_NEAR((s.value().sample(5).position - Vec3(1, 2, -2)).norm(), 0.0, 1e-12);
+}
+
+TEST(VirtualCouplingTest, PoseScriptRefusesAFifoWithoutBlocking) {
+  const std::string fifo = "/tmp/sc_pose_fifo_" + std::to_string(::getpid());
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::future<Result<PoseScript>> load =
+      std::async(std::launch::async, [&fifo] { return PoseScript::load(fifo); });
+  if (load.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+    const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);  // lets it finish
+    if (writer >= 0) ::close(writer);
+    load.wait();
+    std::remove(fifo.c_str());
+    FAIL() << "loading a FIFO blocked";
+  }
+  const Result<PoseScript> r = load.get();
+  std::remove(fifo.c_str());
+  EXPECT_EQ(r.status().code(), ErrorCode::File);
+  EXPECT_NE(r.status().message().find("not a regular file"), std::string::npos)
+      << r.status().message();
 }
 
 TEST(VirtualCouplingTest, PoseScriptRejectsMalformedLines) {

@@ -133,7 +133,7 @@ write("fuzz_off_reader", "bad_header", "OFFX\n1 0 0\n")
 write("fuzz_off_reader", "negative_counts", "OFF\n-3 -1 0\n")
 write("fuzz_off_reader", "degenerate", "OFF\n3 2 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n3 2 1 0\n")
 
-# ---- fuzz_mesh_import: byte 0 even = OBJ, odd = STL (ASCII or binary); then the file.
+# ---- fuzz_mesh_import: byte 0 modulo 4 picks the format (below); then the file.
 def obj(verts, faces, extra=""):
     return "0" + "".join("v %g %g %g\n" % v for v in verts) + extra + \
            "".join("f " + " ".join(str(i + 1) for i in f) + "\n" for f in faces)
@@ -180,6 +180,19 @@ write("fuzz_mesh_import", "stl_ascii_truncated", stl_ascii(TET_V, TET_T)[:120])
 write("fuzz_mesh_import", "stl_binary_cube", stl_binary(BOX_V, BOX_T))
 write("fuzz_mesh_import", "stl_binary_count_too_big", stl_binary(BOX_V, BOX_T, count=1000))
 write("fuzz_mesh_import", "stl_binary_empty", stl_binary(BOX_V, []))
+# Byte 0 modulo 4: '0' OBJ, '1' STL, '2' OFF, '3' PLY. The prism in every format, and
+# the malformed files of tests/data/malformed/ (assimp aborted on off_fewer_faces,
+# spun forever on ply_cut_header, crashed on ply_negative_index).
+for prefix, name in (("2", "l_prism.off"), ("3", "l_prism.ply"), ("3", "l_prism_binary.ply"),
+                     ("3", "l_prism_binary_be.ply"), ("1", "l_prism.stl"),
+                     ("1", "l_prism_binary.stl"), ("0", "l_prism.obj")):
+    with open(os.path.join(data_dir, name), "rb") as f:
+        write("fuzz_mesh_import", name.replace(".", "_"), prefix.encode() + f.read())
+malformed = os.path.join(data_dir, "malformed")
+for name in sorted(os.listdir(malformed)):
+    prefix = {"obj": "0", "stl": "1", "off": "2", "ply": "3"}[name.rsplit(".", 1)[1]]
+    with open(os.path.join(malformed, name), "rb") as f:
+        write("fuzz_mesh_import", "malformed_" + name.replace(".", "_"), prefix.encode() + f.read())
 
 # ---- fuzz_cache_file: byte 0 bit 0 = wrap the rest in a valid header.
 with open(reference, "rb") as f:

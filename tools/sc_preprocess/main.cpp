@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
-// sc-preprocess: preprocesses a mesh file (OFF, OBJ, STL, PLY through assimp) into a
-// SmartCollision cache file and prints the decomposition's statistics.
+// sc-preprocess: preprocesses a mesh file (OFF, OBJ, STL and PLY through strict readers,
+// other formats through assimp) into a SmartCollision cache file and prints the
+// decomposition's statistics.
 //
 //   sc-preprocess MESH [-o CACHE] [--soup]
 //
 // All meshes of the file are merged into one piece (node transforms applied,
 // coincident positions welded). Exit codes: 0 ok, 1 bad input or geometry (or the
-// cache could not be written), 2 usage. Uses the public API only.
+// cache could not be written), 2 usage. A malformed file is one line on stderr naming
+// the file and the problem. Uses the public API only.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -101,6 +104,14 @@ int main(int argc, char** argv) {
     printUsage(stderr);
     return kExitUsage;
   }
+  // Refused before the work: the library would not replace it either.
+  struct stat cache {};
+  if (!options.cache.empty() && ::stat(options.cache.c_str(), &cache) == 0 &&
+      !S_ISREG(cache.st_mode)) {
+    std::fprintf(stderr, "sc-preprocess: the cache file '%s' is not a regular file\n",
+                 options.cache.c_str());
+    return kExitBadInput;
+  }
   const auto start = std::chrono::steady_clock::now();
   sc::Result<sc::tools::ImportedMesh> imported = sc::tools::importMeshFile(options.mesh);
   if (!imported.ok()) {
@@ -117,11 +128,12 @@ int main(int argc, char** argv) {
   build.progress = [&bar](double fraction, const char* stage) { bar(fraction, stage); };
   const sc::ModelKind kind =
       options.soup ? sc::ModelKind::TriangleSoup : sc::ModelKind::ClosedPolyhedron;
-  const sc::Result<sc::PiecePtr> piece = sc::buildPiece(kind, std::move(imported.value().mesh), build);
+  const sc::Result<sc::PiecePtr> piece =
+      sc::buildPiece(kind, std::move(imported.value().mesh), build);
   bar.finish();
   if (!piece.hasValue()) {
-    std::fprintf(stderr, "sc-preprocess: %s: %s\n", sc::describe(piece.status().code()),
-                 piece.status().message().c_str());
+    std::fprintf(stderr, "sc-preprocess: '%s': %s: %s\n", options.mesh.c_str(),
+                 sc::describe(piece.status().code()), piece.status().message().c_str());
     return kExitBadInput;
   }
   const sc::PieceStats& s = piece.value()->stats();
@@ -132,7 +144,9 @@ int main(int argc, char** argv) {
   std::printf("%s\n", s.flipped ? ", given inside out (flipped)" : "");
   std::printf("pieces          1\n");
   std::printf("patches         %d%s\n", s.patches,
-              options.soup ? " (triangle leaves)" : s.convex ? " (convex)" : "");
+              options.soup ? " (triangle leaves)"
+              : s.convex   ? " (convex)"
+                           : "");
   std::printf("virtual faces   %d\n", s.virtual_faces);
   std::printf("hull vertices   %d\n", s.hull_vertices);
   std::printf("tree depth      %d\n", s.tree_depth);

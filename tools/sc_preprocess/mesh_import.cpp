@@ -2,12 +2,19 @@
 #include "mesh_import.h"
 
 #include <assimp/BaseImporter.h>
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <assimp/Importer.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <utility>
 #include <vector>
@@ -113,21 +120,83 @@ bool keepOnlyReaderOf(Assimp::Importer& importer, const char* extension) {
   return true;
 }
 
+/// The lower-case extension of `path`, without the dot ("" when it has none).
+std::string extensionOf(const std::string& path) {
+  const std::size_t dot = path.find_last_of("./");
+  if (dot == std::string::npos || path[dot] != '.') return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+/// Files above this are refused unread (the largest meshes used here are a few MB).
+constexpr off_t kMaxFileBytes = off_t{1} << 30;
+
+/// Opens `path` without blocking (a FIFO would wait for a writer) and keeps it only
+/// when it is a regular file; its size in `size`.
+sc::Status openRegular(const std::string& path, int& fd, off_t& size) {
+  fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return invalid("cannot open '" + path + "': " + std::strerror(errno));
+  struct stat st {};
+  std::string problem;
+  if (::fstat(fd, &st) != 0)
+    problem = std::strerror(errno);
+  else if (!S_ISREG(st.st_mode))
+    problem = "not a regular file";
+  else if (st.st_size > kMaxFileBytes)
+    problem = "larger than 1 GiB";
+  if (problem.empty()) {
+    size = st.st_size;
+    return sc::Status::success();
+  }
+  ::close(fd);
+  return invalid("cannot read '" + path + "': " + problem);
+}
+
+/// The bytes of the regular file at `path`.
+sc::Status readRegularFile(const std::string& path, std::vector<char>& bytes) {
+  int fd = -1;
+  off_t size = 0;
+  if (sc::Status s = openRegular(path, fd, size); !s.ok()) return s;
+  bytes.resize(static_cast<std::size_t>(size));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  if (done != bytes.size()) return invalid("cannot read '" + path + "': short read");
+  return sc::Status::success();
+}
+
 }  // namespace
 
 sc::Result<ImportedMesh> importMeshFile(const std::string& path) {
+  const std::string extension = extensionOf(path);
+  if (hasStrictReader(extension)) {
+    std::vector<char> bytes;
+    if (sc::Status s = readRegularFile(path, bytes); !s.ok()) return s;
+    return parseStrict(bytes.data(), bytes.size(), extension, path);
+  }
+  int fd = -1;
+  off_t size = 0;
+  if (sc::Status s = openRegular(path, fd, size); !s.ok()) return s;
+  ::close(fd);
   Assimp::Importer importer;
   return merge(importer.ReadFile(path, kImportFlags), importer, path);
 }
 
-sc::Result<ImportedMesh> importMeshMemory(const void* data, std::size_t size,
-                                          const char* format) {
+sc::Result<ImportedMesh> importMeshMemory(const void* data, std::size_t size, const char* format) {
   Assimp::Importer importer;
   const std::string source = std::string("<memory>.") + format;
   if (data == nullptr || size == 0) return invalid("'" + source + "' is empty");
+  if (hasStrictReader(format))
+    return parseStrict(static_cast<const char*>(data), size, format, source);
   if (!keepOnlyReaderOf(importer, format)) return invalid("no reader for '" + source + "'");
-  return merge(importer.ReadFileFromMemory(data, size, kImportFlags, format), importer,
-               source);
+  return merge(importer.ReadFileFromMemory(data, size, kImportFlags, format), importer, source);
 }
 
 }  // namespace sc::tools

@@ -4,6 +4,10 @@
 // finishHullBvh() recompute them on load, so a file cannot make them inconsistent.
 #include "preprocess/cache_file.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -253,8 +257,30 @@ bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t inpu
   return true;
 }
 
+namespace {
+
+/// The file at `path` opened for reading, or null when it is missing or not a
+/// regular file: opening a FIFO or a device without O_NONBLOCK can block forever.
+std::FILE* openRegularFile(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return nullptr;
+  struct stat st {};
+  std::FILE* file = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) ? ::fdopen(fd, "rb") : nullptr;
+  if (file == nullptr) ::close(fd);
+  return file;
+}
+
+/// True when `path` names something other than a regular file (a FIFO, a device,
+/// a directory): the cache never replaces it.
+bool existsAsNonRegular(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+}
+
+}  // namespace
+
 bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data) {
-  std::FILE* file = std::fopen(path.c_str(), "rb");
+  std::FILE* file = openRegularFile(path);
   if (file == nullptr) return false;
   // The header first: a foreign or stale file of any size is rejected unread.
   std::vector<std::uint8_t> bytes(kHeaderSize);
@@ -276,6 +302,8 @@ bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData
 }
 
 Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data) {
+  if (existsAsNonRegular(path))
+    return Status(ErrorCode::File, "the cache file '" + path + "' is not a regular file");
   const std::vector<std::uint8_t> bytes = encodePieceCache(input_hash, data);
   // A name of our own beside the target, so rename() replaces it in one step.
   const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();

@@ -7,12 +7,16 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <iterator>
 #include <string>
 #include <vector>
@@ -316,6 +320,30 @@ TEST_F(CacheFile, UnwritableFileGivesThePieceAndAFileWarning) {
       object.AddTriangles(xyz.data(), static_cast<int>(star_->vertices.size()), ids.data(),
                           static_cast<int>(star_->triangles.size()), options.cache_file.c_str()),
       SC_ERROR_FILE);
+}
+
+TEST_F(CacheFile, FifoIsNeitherReadNorReplaced) {
+  TempFile fifo("fifo.bvh");
+  ASSERT_EQ(::mkfifo(fifo.path.c_str(), 0600), 0);
+  std::future<Result<PiecePtr>> build =
+      std::async(std::launch::async, [&fifo] { return starThrough(fifo.path); });
+  if (build.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+    // Blocked opening the FIFO: a writer that closes at once lets it finish.
+    const int writer = ::open(fifo.path.c_str(), O_WRONLY | O_NONBLOCK);
+    if (writer >= 0) ::close(writer);
+    build.wait();
+    FAIL() << "building through a FIFO cache file blocked";
+  }
+  const Result<PiecePtr> piece = build.get();
+  ASSERT_TRUE(piece.hasValue());
+  EXPECT_EQ(piece.status().code(), ErrorCode::File);
+  EXPECT_NE(piece.status().message().find("not a regular file"), std::string::npos)
+      << piece.status().message();
+  EXPECT_FALSE(piece.value()->stats().from_cache);
+  ASSERT_NO_FATAL_FAILURE(expectSamePiece(fresh(), piece.value()->internals()));
+  struct stat st {};
+  ASSERT_EQ(::stat(fifo.path.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the FIFO was replaced";
 }
 
 /// Re-signs a modified payload, so decoding gets past the checksum.

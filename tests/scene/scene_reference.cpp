@@ -95,6 +95,7 @@ bool ReferenceScene::addObject(int id, ModelPtr model, const Placement& placemen
   Object o;
   o.model = std::move(model);
   o.own = placement;
+  o.own.orientation.normalize();  // as setGroupPlacement
   objects_.emplace(id, std::move(o));
   groups_.at(kStaticGroup).members.push_back(id);
   return true;

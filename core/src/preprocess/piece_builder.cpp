@@ -129,6 +129,7 @@ Status preprocess(PieceData& data, const ProgressCallback& progress) {
 
 Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  if (!knownKind(kind)) return Status(ErrorCode::InvalidArgument, "unknown ModelKind");
   if (options.progress) options.progress(0.0, "validating piece");
   if (Status s = detail::validateArrays(mesh); !s.ok()) return s;
 

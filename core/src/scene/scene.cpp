@@ -95,15 +95,24 @@ struct Job {
   Directions dirs;
 };
 
-/// A placement the queries can use: centres finite and within kMaxCoordinate (as
-/// vertices are, so no distance or motion overflows), a quaternion that normalises.
-Status checkPlacement(const Placement& p) {
+/// `p` as the queries use it: centres finite and within kMaxCoordinate (as vertices
+/// are, so no distance or motion overflows), the quaternion normalised (any finite,
+/// non-zero one, as sc.h's SetTransformation does).
+Result<Placement> usablePlacement(const Placement& p) {
   if (!detail::withinCoordinateLimit(p.world_center) ||
-      !detail::withinCoordinateLimit(p.local_center) ||
-      !detail::allFinite(p.orientation.coeffs()) || p.orientation.norm() < 0.5)
+      !detail::withinCoordinateLimit(p.local_center))
     return Status(ErrorCode::InvalidArgument,
                   "placement not finite or a centre beyond 1e100 in magnitude");
-  return {};
+  const Eigen::Vector4d q = p.orientation.coeffs();
+  if (!detail::allFinite(q) || q.cwiseAbs().maxCoeff() == 0.0)
+    return Status(ErrorCode::InvalidArgument, "orientation quaternion zero or not finite");
+  Placement unit = p;
+  const double norm = p.orientation.norm();
+  if (norm > 1e-150 && norm < 1e150)
+    unit.orientation.normalize();
+  else
+    unit.setOrientation(p.orientation);  // rescales first: no overflow or underflow
+  return unit;
 }
 
 GroupView viewOf(const GroupRec& g) {
@@ -423,11 +432,12 @@ Status Scene::addObject(int id, ModelPtr model, const Placement& placement) {
   if (model->kind() != impl_->kind)
     return Status(ErrorCode::InvalidOperation, "object type differs from the scene type");
   if (impl_->objects.count(id)) return invalidId("object id already in the scene");
-  if (Status s = checkPlacement(placement); !s.ok()) return s;
+  const Result<Placement> unit = usablePlacement(placement);
+  if (!unit.ok()) return unit.status();
   ObjectRec o;
   o.id = id;
   o.model = std::move(model);
-  o.own = placement;
+  o.own = unit.value();
   o.static_box = transformBox(o.model->bounds(), o.own.worldFromLocal());
   auto it = impl_->objects.emplace(id, std::move(o)).first;
   impl_->groups.at(kStaticGroup).members.push_back(&it->second);
@@ -490,9 +500,9 @@ Status Scene::setGroupPlacement(int gid, const Placement& placement) {
     return Status(ErrorCode::InvalidOperation, "the static group does not move");
   const auto it = impl_->groups.find(gid);
   if (it == impl_->groups.end()) return invalidId("unknown group id");
-  if (Status s = checkPlacement(placement); !s.ok()) return s;
-  it->second.placement = placement;
-  it->second.placement.orientation.normalize();
+  const Result<Placement> unit = usablePlacement(placement);
+  if (!unit.ok()) return unit.status();
+  it->second.placement = unit.value();
   return {};
 }
 

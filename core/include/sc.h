@@ -134,6 +134,8 @@ class SC_API SCObject {
   SCObject& operator=(const SCObject&) = delete;
 
   /// Adds one piece. Validates everything; on error the object is unchanged.
+  /// SC_ERROR_FILE: the piece was added, but bvhFile could not be written, or it
+  /// passed its checksum yet does not describe this mesh (then it was rebuilt).
   SCint AddTriangles(const SCdouble* vertices, SCint vertexCount, const SCint* triangles,
                      SCint triangleCount, const char* bvhFile = nullptr);
   SCint AddTriangles(const SCfloat* vertices, SCint vertexCount, const SCint* triangles,

@@ -74,7 +74,8 @@ SC_API bool knownKind(ModelKind kind);
 /// Triangle soup: anything finite with valid indices.
 /// @return the piece; InvalidArgument (unknown kind, non-finite, bad index) or
 ///   InvalidGeometry (closed rules) without a piece; or the piece with a File warning
-///   when the cache file could not be written.
+///   when the cache file could not be written, or passed its checksum but does not
+///   describe this input (then it is rebuilt and rewritten; see docs/api.md).
 SC_API Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options = {});
 
 /// The pieces of one object, all of one kind. May be empty (takes part in nothing).

@@ -178,6 +178,9 @@ class SC_API SCSceneManager {
   SCint GetTransformation(SCint gid, SCenum type, SCfloat* trans) const;
 
   SCint SetActivityObject(SCint id, SCenum activity);
+  /// PASSIVE drops the group's tracking state as target; INACTIVE that of every
+  /// direction of its pairs. A transformation set between INACTIVE and ACTIVE is a
+  /// teleport: the pairs restart from the new pose instead of following a path.
   SCint SetActivityGroup(SCint gid, SCenum activity);
   /// ONE_WAY_*: gid1 is the target.
   SCint SetActivityPair(SCint gid1, SCint gid2, SCenum activity);

@@ -97,7 +97,8 @@ class SC_API PairTracker {
   /// A direction whose pair intersects and that has no tracking state yet reports
   /// InvalidInitialTransformation; tracking starts once it is seen apart.
   /// Settings failing validate() make every requested direction InvalidArgument and
-  /// change no state.
+  /// change no state. Each direction follows a path from its last update (see
+  /// Scene::setGroupPlacement); reset() first for a teleport.
   /// Allocates only while the pair's working sets grow.
   void update(const GroupView& a, const GroupView& b, Directions directions,
               const SceneSettings& settings, DirectedResult out[2]);
@@ -112,6 +113,9 @@ class SC_API PairTracker {
 
   /// Drops the tracking state of direction 0 (a target) or 1 (b target).
   void forget(int direction);
+  /// Drops the tracking state of both directions: the next update measures the pair
+  /// as first seen. Call it when a group teleports (jumps without a path).
+  void reset();
   /// True when the direction has seen the pair apart and follows it.
   bool tracking(int direction) const;
 

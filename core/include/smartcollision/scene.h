@@ -58,10 +58,19 @@ class SC_API Scene {
   Status removeObjectFromGroup(int gid, int id);
   bool hasGroup(int gid) const;
   Result<Placement> groupPlacement(int gid) const;
-  /// Quaternion normalised as by addObject.
+  /// Moves the group along a path from its last placement: a pair the group passed
+  /// through on the way keeps its penetration depth (the proxy stops at the first
+  /// contact), however far the step. Quaternion normalised as by addObject.
   Status setGroupPlacement(int gid, const Placement& placement);
+  /// Moves the group without a path: setGroupPlacement, then the tracking state of
+  /// every pair of the group (both directions) is reset, so the next update measures
+  /// each pair as first seen (apart: the distance; intersecting:
+  /// InvalidInitialTransformation, or resolved if resolve_initial_intersection).
+  /// In sc.h: SetActivityGroup(gid, INACTIVE), SetTransformation, then ACTIVE.
+  Status teleportGroup(int gid, const Placement& placement);
 
-  // Activities.
+  // Activities. Setting a group Passive drops the state of its directions as target,
+  // Inactive that of every direction of its pairs.
   Status setObjectActivity(int id, Activity activity);  ///< Active or Inactive
   Status setGroupActivity(int gid, Activity activity);
   /// Overrides Table 8-1 for the pair; one-way values set only target_gid -> opponent_gid.

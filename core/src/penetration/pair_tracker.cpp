@@ -160,6 +160,11 @@ void PairTracker::contactPoints(int direction, double margin, std::vector<Contac
 
 void PairTracker::forget(int direction) { state_->tracker[direction & 1].forget(); }
 
+void PairTracker::reset() {
+  forget(0);
+  forget(1);
+}
+
 bool PairTracker::tracking(int direction) const {
   return state_->tracker[direction & 1].tracking();
 }

@@ -506,6 +506,12 @@ Status Scene::setGroupPlacement(int gid, const Placement& placement) {
   return {};
 }
 
+Status Scene::teleportGroup(int gid, const Placement& placement) {
+  if (Status s = setGroupPlacement(gid, placement); !s.ok()) return s;
+  impl_->table.forgetGroup(gid);  // both directions of every pair: the path is cut
+  return {};
+}
+
 Status Scene::setObjectActivity(int id, Activity activity) {
   const auto it = impl_->objects.find(id);
   if (it == impl_->objects.end()) return invalidId("unknown object id");
@@ -526,8 +532,12 @@ Status Scene::setGroupActivity(int gid, Activity activity) {
   if (it == impl_->groups.end()) return invalidId("unknown group id");
   it->second.activity = activity;
   // A passive or inactive group keeps no collision status (manual 8.4): drop it now,
-  // so that re-activating before the next update cannot resume it.
-  if (activity == Activity::Passive || activity == Activity::Inactive)
+  // so that re-activating before the next update cannot resume it. An inactive group
+  // takes part in no pair (Table 8-1), as opponent either: its pairs are dropped both
+  // ways, which makes INACTIVE then ACTIVE sc.h's teleport (Scene::teleportGroup).
+  if (activity == Activity::Inactive)
+    impl_->table.forgetGroup(gid);
+  else if (activity == Activity::Passive)
     impl_->table.forgetTarget(gid);
   return {};
 }

@@ -104,14 +104,17 @@ Result<Placement> usablePlacement(const Placement& p) {
     return Status(ErrorCode::InvalidArgument,
                   "placement not finite or a centre beyond 1e100 in magnitude");
   const Eigen::Vector4d q = p.orientation.coeffs();
-  if (!detail::allFinite(q) || q.cwiseAbs().maxCoeff() == 0.0)
-    return Status(ErrorCode::InvalidArgument, "orientation quaternion zero or not finite");
+  if (!detail::allFinite(q))
+    return Status(ErrorCode::InvalidArgument, "orientation quaternion not finite");
+  const double largest = q.cwiseAbs().maxCoeff();
+  if (largest == 0.0) return Status(ErrorCode::InvalidArgument, "orientation quaternion zero");
+  // Eigen's normalize() in the usual range (bit for bit what setGroupPlacement always
+  // did); a rescaling first where squaring the components would underflow or overflow.
   Placement unit = p;
-  const double norm = p.orientation.norm();
-  if (norm > 1e-150 && norm < 1e150)
+  if (largest > 1e-150 && largest < 1e150)
     unit.orientation.normalize();
   else
-    unit.setOrientation(p.orientation);  // rescales first: no overflow or underflow
+    unit.setOrientation(p.orientation);
   return unit;
 }
 

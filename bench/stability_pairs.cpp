@@ -259,17 +259,17 @@ double freeAngle(const Lever& l) {
   return hi;
 }
 
-/// Each mode's exact answer. Input: translation only. None: orientation of the last
-/// free pose of the path. Free: no translation, least turn. Mix (kT = kR = 1):
+/// Each mode's exact answer. Input: translation only. None: orientation at the impact
+/// on the path (the lever turns about a fixed pivot: the touching angle, no
+/// translation, as Free). Free: no translation, least turn. Mix (kT = kR = 1):
 /// least t^2 + r^2 over the turn back (fine scan; the best translation at each angle
 /// is that angle's translational depth).
-Truth truthFor(const Lever& l, sc::RotationMode mode, double last_free) {
+Truth truthFor(const Lever& l, sc::RotationMode mode) {
   const double now = l.final_angle;
   switch (mode) {
     case sc::RotationMode::Input:
       return {l.depth(now), 0.0};
     case sc::RotationMode::None:
-      return {l.depth(last_free), last_free - now};
     case sc::RotationMode::Free:
       return {0.0, freeAngle(l) - now};
     case sc::RotationMode::Mix:
@@ -290,16 +290,13 @@ void rotationRow(std::vector<Cell>& cells) {
   const Lever l;
   const std::string row = "rotational penetration (Fig. 5-11)";
   PairCase c{row, l.ground, l.half, {}, l.pivot_local};
-  double last_free = 0.0;
-  for (double deg = 10.0; deg >= -5.0 - 1e-9; deg -= 0.25) {
+  for (double deg = 10.0; deg >= -5.0 - 1e-9; deg -= 0.25)
     c.path.push_back(l.at(deg * kPi / 180.0));
-    if (boxDepth(l.ground, boxAt(l.half, c.path.back())) < 0) last_free = deg * kPi / 180.0;
-  }
   const std::pair<const char*, sc::RotationMode> modes[] = {
       {kScInput, sc::RotationMode::Input}, {kScMix, sc::RotationMode::Mix},
       {kScFree, sc::RotationMode::Free}, {kScNone, sc::RotationMode::None}};
   for (const auto& [column, mode] : modes) {
-    const Truth truth = truthFor(l, mode, last_free);
+    const Truth truth = truthFor(l, mode);
     const sc::DirectedResult r = scRun(c, mode, false);
     Cell cell{row, column, "", std::nan(""), std::nan(""), ""};
     if (r.code != sc::ErrorCode::Ok) {

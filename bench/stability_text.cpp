@@ -91,8 +91,9 @@ std::string rowDescription(const std::string& row) {
        "A 2 x 0.1 x 0.1 m bar turning about its lower left edge, held 1 cm above a slab, "
        "from +10 to -5 degrees in 0.25 degree steps: at the end its far end is deep in the "
        "slab while a turn back of under 5 degrees frees it. Ground truth per mode: Input the exact "
-       "translational depth, None the translation at the last free orientation and the "
-       "turn since, Free no translation and the least turn, Mix the least t^2 + r^2 over "
+       "translational depth, None the orientation at the impact (the touching angle: no "
+       "translation) and the turn since, Free no translation and the least turn, Mix the least t^2 "
+       "+ r^2 over "
        "the turn back (scan); peers against the translational depth. Value |TPDV| [m]; "
        "error the larger of the translation error and 2 m times the turn error."},
       {"thin wall at 50 m/s",

@@ -2,6 +2,16 @@
 // The SmartCollision SDK 2.3 API (user's manual sections 4-8): SCObject and
 // SCSceneManager. A thin façade over the modern API in <smartcollision/...>;
 // see docs/api.md for the decisions the manual leaves open.
+//
+// Threads: distinct SCSceneManagers may be driven from distinct threads at once.
+// Every call on one SCSceneManager, const ones included, must come from one thread
+// at a time (GetStatus reads what UpdateStatus wrote); an SCObject in a scene belongs
+// to that scene's thread. AddTriangles on distinct objects may run concurrently
+// (not with the same bvhFile). UpdateStatus may use the scene's own worker threads
+// (SC_SCENE_MANAGER_THREADS) and returns when they are done. docs/reliability.md,
+// "Thread-safety contract", has the details.
+//
+// Errors: a call that returns an error changes nothing and writes no output.
 #pragma once
 
 #include <memory>
@@ -124,6 +134,8 @@ class SC_API SCObject {
   SCObject& operator=(const SCObject&) = delete;
 
   /// Adds one piece. Validates everything; on error the object is unchanged.
+  /// SC_ERROR_FILE: the piece was added, but bvhFile could not be written, or it
+  /// passed its checksum yet does not describe this mesh (then it was rebuilt).
   SCint AddTriangles(const SCdouble* vertices, SCint vertexCount, const SCint* triangles,
                      SCint triangleCount, const char* bvhFile = nullptr);
   SCint AddTriangles(const SCfloat* vertices, SCint vertexCount, const SCint* triangles,
@@ -166,6 +178,9 @@ class SC_API SCSceneManager {
   SCint GetTransformation(SCint gid, SCenum type, SCfloat* trans) const;
 
   SCint SetActivityObject(SCint id, SCenum activity);
+  /// PASSIVE drops the group's tracking state as target; INACTIVE that of every
+  /// direction of its pairs. A transformation set between INACTIVE and ACTIVE is a
+  /// teleport: the pairs restart from the new pose instead of following a path.
   SCint SetActivityGroup(SCint gid, SCenum activity);
   /// ONE_WAY_*: gid1 is the target.
   SCint SetActivityPair(SCint gid1, SCint gid2, SCenum activity);
@@ -181,6 +196,7 @@ class SC_API SCSceneManager {
   /// SC_STATUS_COUNT: the number of listed pairs.
   SCint GetStatus(SCenum type, SCint* value);
   SCint GetStatus(SCenum type, SCint* value, SCint index, SCbool reverseFlag);
+  /// A value beyond float's range gives SC_ERROR_INVALID_ARGUMENT (read it as double).
   SCint GetStatus(SCenum type, SCfloat* value, SCint index, SCbool reverseFlag);
   SCint GetStatus(SCenum type, SCdouble* value, SCint index, SCbool reverseFlag);
 

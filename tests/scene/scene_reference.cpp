@@ -95,6 +95,7 @@ bool ReferenceScene::addObject(int id, ModelPtr model, const Placement& placemen
   Object o;
   o.model = std::move(model);
   o.own = placement;
+  o.own.orientation.normalize();  // as setGroupPlacement
   objects_.emplace(id, std::move(o));
   groups_.at(kStaticGroup).members.push_back(id);
   return true;
@@ -147,10 +148,12 @@ bool ReferenceScene::setObjectActivity(int id, Activity activity) {
 bool ReferenceScene::setGroupActivity(int gid, Activity activity) {
   if (gid == kStaticGroup || !groups_.count(gid)) return false;
   groups_.at(gid).activity = activity;
-  if (activity == Activity::Passive || activity == Activity::Inactive) {
+  // Passive: the directions with the group as target; Inactive: its pairs both ways.
+  const bool inactive = activity == Activity::Inactive;
+  if (activity == Activity::Passive || inactive) {
     for (auto& [key, tracker] : trackers_) {
-      if (key.first == gid) tracker.forget(0);
-      if (key.second == gid) tracker.forget(1);
+      if (key.first == gid || (inactive && key.second == gid)) tracker.forget(0);
+      if (key.second == gid || (inactive && key.first == gid)) tracker.forget(1);
     }
   }
   return true;

@@ -2,6 +2,9 @@
 // Pair-level collision: minimum distance when apart, dynamic penetration depth
 // (TPDV/RPDV) when penetrating, between two groups of placed models. This is what
 // the scene runs per listed pair, and what the Bullet plugin runs per body pair.
+//
+// Threads: a PairTracker is used by one thread at a time; distinct trackers may run
+// at once on distinct threads, over shared models (models and pieces are immutable).
 #pragma once
 
 #include <memory>
@@ -20,7 +23,9 @@ struct PairState;
 /// One direction of a pair: target T, opponent O. All vectors in world coordinates.
 /// Fields other than the ids are valid only when code == Ok.
 struct DirectedResult {
-  ErrorCode code = ErrorCode::NoResult;  ///< Ok, NoResult or InvalidInitialTransformation
+  /// Ok, NoResult, InvalidInitialTransformation, or InvalidArgument (PairTracker
+  /// only: settings out of range, nothing computed).
+  ErrorCode code = ErrorCode::NoResult;
   int target_object = -1;    ///< Part::id of T's part in the reported contact
   int opponent_object = -1;  ///< Part::id of O's part
   int target_piece = -1;     ///< piece index within that part's model
@@ -91,6 +96,9 @@ class SC_API PairTracker {
   /// A direction not requested is left NoResult and its state is kept.
   /// A direction whose pair intersects and that has no tracking state yet reports
   /// InvalidInitialTransformation; tracking starts once it is seen apart.
+  /// Settings failing validate() make every requested direction InvalidArgument and
+  /// change no state. Each direction follows a path from its last update (see
+  /// Scene::setGroupPlacement); reset() first for a teleport.
   /// Allocates only while the pair's working sets grow.
   void update(const GroupView& a, const GroupView& b, Directions directions,
               const SceneSettings& settings, DirectedResult out[2]);
@@ -105,6 +113,9 @@ class SC_API PairTracker {
 
   /// Drops the tracking state of direction 0 (a target) or 1 (b target).
   void forget(int direction);
+  /// Drops the tracking state of both directions: the next update measures the pair
+  /// as first seen. Call it when a group teleports (jumps without a path).
+  void reset();
   /// True when the direction has seen the pair apart and follows it.
   bool tracking(int direction) const;
 

@@ -65,18 +65,24 @@ class SC_API Piece {
 };
 using PiecePtr = std::shared_ptr<const Piece>;
 
+/// True for the values ModelKind names (a cast integer may name none).
+SC_API bool knownKind(ModelKind kind);
+
 /// Validates and preprocesses one piece.
 /// Closed polyhedron: every edge shared by exactly two triangles with opposite
 /// winding, no degenerate triangle, one connected shell; inside-out is flipped.
 /// Triangle soup: anything finite with valid indices.
-/// @return the piece; InvalidArgument (non-finite, bad index) or InvalidGeometry
-///   (closed rules) without a piece; or the piece with a File warning when the cache
-///   file could not be written.
+/// @return the piece; InvalidArgument (unknown kind, non-finite, bad index) or
+///   InvalidGeometry (closed rules) without a piece; or the piece with a File warning
+///   when the cache file could not be written, or passed its checksum but does not
+///   describe this input (then it is rebuilt and rewritten; see docs/api.md).
 SC_API Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options = {});
 
 /// The pieces of one object, all of one kind. May be empty (takes part in nothing).
 class SC_API Model {
  public:
+  /// Throws std::invalid_argument (and no model exists) for an unknown kind, a null
+  /// piece, or a piece of another kind.
   Model(ModelKind kind, std::vector<PiecePtr> pieces);
 
   ModelKind kind() const { return kind_; }

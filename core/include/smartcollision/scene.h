@@ -2,6 +2,15 @@
 // The scene manager of manual section 8: objects with ids, rigid groups, the
 // static group, activities of objects, groups and group pairs (Table 8-1), and the
 // per-pair results of UpdateStatus.
+//
+// Threads: distinct scenes may be used from distinct threads at once. One scene is
+// used by one thread at a time, const calls included (pairs() reads what update()
+// wrote); guard it with a mutex to share it. Models may be shared by any number of
+// scenes and threads. update() may spread pairs over the scene's own workers
+// (SceneSettings::threads) and returns when they are done; nothing runs on them
+// after it returns. See docs/reliability.md, "Thread-safety contract".
+//
+// Bad input returns a non-Ok Status with a message and changes nothing.
 #pragma once
 
 #include <memory>
@@ -34,6 +43,8 @@ class SC_API Scene {
   ModelKind kind() const;
 
   // Objects. Ids are the caller's; an object starts in the static group, active.
+  /// The placement's quaternion is normalised (InvalidArgument if zero or not finite),
+  /// as by setGroupPlacement and sc.h's SetTransformation.
   Status addObject(int id, ModelPtr model, const Placement& placement);
   Status deleteObject(int id);
   bool hasObject(int id) const;
@@ -47,15 +58,26 @@ class SC_API Scene {
   Status removeObjectFromGroup(int gid, int id);
   bool hasGroup(int gid) const;
   Result<Placement> groupPlacement(int gid) const;
+  /// Moves the group along a path from its last placement: a pair the group passed
+  /// through on the way keeps its penetration depth (the proxy stops at the first
+  /// contact), however far the step. Quaternion normalised as by addObject.
   Status setGroupPlacement(int gid, const Placement& placement);
+  /// Moves the group without a path: setGroupPlacement, then the tracking state of
+  /// every pair of the group (both directions) is reset, so the next update measures
+  /// each pair as first seen (apart: the distance; intersecting:
+  /// InvalidInitialTransformation, or resolved if resolve_initial_intersection).
+  /// In sc.h: SetActivityGroup(gid, INACTIVE), SetTransformation, then ACTIVE.
+  Status teleportGroup(int gid, const Placement& placement);
 
-  // Activities.
+  // Activities. Setting a group Passive drops the state of its directions as target,
+  // Inactive that of every direction of its pairs.
   Status setObjectActivity(int id, Activity activity);  ///< Active or Inactive
   Status setGroupActivity(int gid, Activity activity);
   /// Overrides Table 8-1 for the pair; one-way values set only target_gid -> opponent_gid.
   Status setPairActivity(int target_gid, int opponent_gid, PairActivity activity);
 
   const SceneSettings& settings() const;
+  /// InvalidArgument naming the field (settings kept) unless validate(settings) is Ok.
   Status setSettings(const SceneSettings& settings);
 
   /// Computes every listed pair for the current placements.

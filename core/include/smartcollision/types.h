@@ -129,7 +129,7 @@ enum class PairActivity : std::uint8_t { Active, Inactive, OneWayActive, OneWayI
 
 /// How a penetrating pair splits its depth into translation and rotation (manual 8.8).
 enum class RotationMode : std::uint8_t {
-  None,   ///< contact orientation frozen at the last pose before penetration
+  None,   ///< contact orientation frozen at the impact (the first contact on the path)
   Input,  ///< rotation follows the input; translation resolves (the default)
   Free,   ///< translation minimised first; rotation resolves the rest
   Mix,    ///< minimise 1/2 kT |TPDV|^2 + 1/2 kR |RPDV|^2

@@ -69,20 +69,24 @@ SCint SCObject::AddTriangles(const SCfloat* vertices, SCint vertexCount, const S
 }
 
 SCint SCObject::SetTransformation(SCenum type, const SCdouble* trans) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   if (impl_->scene != nullptr) return SC_ERROR_INVALID_OPERATION;
   return sc::detail::setTransformation(impl_->placement, type, trans);
 }
 
 SCint SCObject::SetTransformation(SCenum type, const SCfloat* trans) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   if (impl_->scene != nullptr) return SC_ERROR_INVALID_OPERATION;
   return sc::detail::setTransformation(impl_->placement, type, trans);
 }
 
 SCint SCObject::GetTransformation(SCenum type, SCdouble* trans) const {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   return sc::detail::getTransformation(currentPlacement(), type, trans);
 }
 
 SCint SCObject::GetTransformation(SCenum type, SCfloat* trans) const {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   return sc::detail::getTransformation(currentPlacement(), type, trans);
 }
 

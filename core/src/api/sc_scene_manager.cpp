@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // SCSceneManager: the manual's scene API over sc::Scene. Holds no logic of its
 // own beyond argument checks and the translation of enums and result layouts.
+#include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 
 #include "api/error_codes.h"
@@ -92,9 +94,29 @@ SCenum featureType(sc::FeatureType t) {
   return SC_FEATURE_VERTEX;
 }
 
+/// True when every value converts to Real without overflow. A double beyond float's
+/// range is refused rather than written as inf (the conversion is undefined), as
+/// GetTransformation does.
 template <class Real>
-void write(const sc::Vec3& v, Real* out) {
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<Real>(v[i]);
+bool fits(const double* v, int n) {
+  for (int i = 0; i < n; ++i) {
+    if (!(std::abs(v[i]) <= static_cast<double>(std::numeric_limits<Real>::max()))) return false;
+  }
+  return true;
+}
+
+/// Writes `n` values if all fit in Real; SC_ERROR_INVALID_ARGUMENT (nothing written)
+/// otherwise.
+template <class Real>
+SCint writeChecked(const double* v, int n, Real* out) {
+  if (!fits<Real>(v, n)) return SC_ERROR_INVALID_ARGUMENT;
+  for (int i = 0; i < n; ++i) out[i] = static_cast<Real>(v[i]);
+  return SC_NO_ERROR;
+}
+
+int put(const sc::Vec3& v, double* out) {
+  for (int i = 0; i < 3; ++i) out[i] = v[i];
+  return 3;
 }
 
 /// GetStatus for the integer-valued types.
@@ -142,14 +164,25 @@ SCint intStatus(const sc::PairStatus& pair, int d, SCenum type, SCint* out) {
   return SC_NO_ERROR;
 }
 
-/// SC_CONTACT_POINTS: 10 reals per contact.
+/// The 10 reals of one contact of SC_CONTACT_POINTS.
+void contactReals(const sc::ContactPoint& p, double* v) {
+  put(p.point_on_target, v);
+  put(p.point_on_opponent, v + 3);
+  put(p.normal, v + 6);
+  v[9] = p.separation;
+}
+
+/// SC_CONTACT_POINTS: 10 reals per contact; all checked before any is written.
 template <class Real>
 SCint contactPointsStatus(const std::vector<sc::ContactPoint>& points, Real* out) {
+  double v[10];
   for (const sc::ContactPoint& p : points) {
-    write(p.point_on_target, out);
-    write(p.point_on_opponent, out + 3);
-    write(p.normal, out + 6);
-    out[9] = static_cast<Real>(p.separation);
+    contactReals(p, v);
+    if (!fits<Real>(v, 10)) return SC_ERROR_INVALID_ARGUMENT;
+  }
+  for (const sc::ContactPoint& p : points) {
+    contactReals(p, v);
+    writeChecked(v, 10, out);
     out += 10;
   }
   return SC_NO_ERROR;
@@ -174,21 +207,24 @@ SCint realStatus(const sc::PairStatus& pair, int d, SCenum type, Real* out) {
       return SC_ERROR_INVALID_ARGUMENT;
   }
   if (r.code != sc::ErrorCode::Ok) return toScCode(r.code);
+  double v[4];
+  int n = 0;
   switch (type) {
-    case SC_DISTANCE: out[0] = static_cast<Real>(r.distance); break;
-    case SC_CONTACT_NORMAL: write(r.normal, out); break;
-    case SC_POINT_ON_TARGET: write(r.point_on_target, out); break;
-    case SC_POINT_ON_OPPONENT: write(r.point_on_opponent, out); break;
-    case SC_TPD_VECTOR: write(r.tpdv, out); break;
-    case SC_RPD_VECTOR: write(r.rpdv, out); break;
-    case SC_CONTACT_POSITION: write(r.contact_position, out); break;
+    case SC_DISTANCE: v[n++] = r.distance; break;
+    case SC_CONTACT_NORMAL: n = put(r.normal, v); break;
+    case SC_POINT_ON_TARGET: n = put(r.point_on_target, v); break;
+    case SC_POINT_ON_OPPONENT: n = put(r.point_on_opponent, v); break;
+    case SC_TPD_VECTOR: n = put(r.tpdv, v); break;
+    case SC_RPD_VECTOR: n = put(r.rpdv, v); break;
+    case SC_CONTACT_POSITION: n = put(r.contact_position, v); break;
     default:
-      out[0] = static_cast<Real>(r.contact_orientation.w());
-      out[1] = static_cast<Real>(r.contact_orientation.x());
-      out[2] = static_cast<Real>(r.contact_orientation.y());
-      out[3] = static_cast<Real>(r.contact_orientation.z());
+      v[0] = r.contact_orientation.w();
+      v[1] = r.contact_orientation.x();
+      v[2] = r.contact_orientation.y();
+      v[3] = r.contact_orientation.z();
+      n = 4;
   }
-  return SC_NO_ERROR;
+  return writeChecked(v, n, out);
 }
 
 }  // namespace

@@ -129,6 +129,11 @@ void PairTracker::update(const GroupView& a, const GroupView& b, Directions dire
   out[0] = DirectedResult();
   out[1] = DirectedResult();
   state_->last[0] = state_->last[1] = detail::ProxyOutcome();
+  if (!validate(settings).ok()) {  // a few comparisons; no tracking state is touched
+    if (directions.a_target) out[0].code = ErrorCode::InvalidArgument;
+    if (directions.b_target) out[1].code = ErrorCode::InvalidArgument;
+    return;
+  }
   if (directions.a_target) detail::runDirection(*state_, 0, a, b, settings, out[0]);
   if (directions.b_target) detail::runDirection(*state_, 1, b, a, settings, out[1]);
 }
@@ -154,6 +159,11 @@ void PairTracker::contactPoints(int direction, double margin, std::vector<Contac
 }
 
 void PairTracker::forget(int direction) { state_->tracker[direction & 1].forget(); }
+
+void PairTracker::reset() {
+  forget(0);
+  forget(1);
+}
 
 bool PairTracker::tracking(int direction) const {
   return state_->tracker[direction & 1].tracking();

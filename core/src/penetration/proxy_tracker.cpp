@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geometry/math_util.h"
+#include "penetration/conservative_advancement.h"
 #include "penetration/contact_qp.h"
 
 namespace sc::detail {
@@ -149,10 +150,9 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
       (proxy_ * center - goal_center).norm() <= 1e-12 * (1.0 + goal_center.norm() + center.norm());
   if (reached) proxy_ = goal;
   if (!reached && mode == RotationMode::None && !penetrating_) {
-    // Penetration began in this update: None keeps the orientation it had before.
-    proxy_ = previous_proxy_;
-    out.iterations +=
-        slide(query, previous_proxy_.rotation, goal_center, center, settings, &feasible);
+    // Penetration began in this update: None keeps the orientation at the impact.
+    proxy_ = impactPose(query, goal, center, settings);
+    out.iterations += slide(query, proxy_.rotation, goal_center, center, settings, &feasible);
   } else if (!feasible && mode == RotationMode::Input) {
     // No translation resolves (manual Fig. 5-11): Input turns too, rotation weighted
     // far above translation, from the last free proxy.
@@ -163,6 +163,21 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
     return turned_to_goal;
   }
   return reached;
+}
+
+Rigid ProxyTracker::impactPose(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                               const SceneSettings& settings) {
+  // The input's motion from the last free proxy, translation and rotation together,
+  // advanced to its first contact (within the skin): the pose at the time of impact.
+  TwistMotion motion;
+  motion.start = previous_proxy_;
+  motion.center = center;
+  motion.dc = goal * center - previous_proxy_ * center;
+  motion.dtheta = rotationVector(goal.rotation * previous_proxy_.rotation.transpose());
+  skip_.clear();
+  const double s =
+      advance(query, motion, skinOf(settings), skip_, twist_.candidates, slideMarginOf(settings));
+  return motion.at(s);
 }
 
 bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& center,

@@ -29,7 +29,8 @@ struct ProxyOutcome {
 ///   1. First sight: intersecting -> InvalidInitialTransformation; else start here.
 ///   2. Orient the proxy: Input follows the goal's rotation (and turns as in Free,
 ///      rotation weighted first, when no translation resolves); None keeps the
-///      rotation of the last pose before penetration began; Free and Mix let the
+///      rotation at the impact (the motion from the last free proxy advanced to
+///      its first contact); Free and Mix let the
 ///      proxy turn (twistSlide: a 6-DOF version of step 3).
 ///   3. Up to max_iterations: collect contacts within the tolerance; solve the QP
 ///      "closest centre to the goal's centre, every contact's exact separating plane
@@ -61,6 +62,10 @@ class ProxyTracker {
   /// `feasible` is false when the rows admit no translation (the proxy stays stuck).
   int slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
             const Vec3& center, const SceneSettings& settings, bool* feasible);
+  /// None mode: the pose where the motion from the last free proxy to `goal` first
+  /// meets the opponent.
+  Rigid impactPose(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                   const SceneSettings& settings);
   /// twistSlide from the proxy; true when it reached the goal.
   bool turn(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
             const SceneSettings& settings, ProxyOutcome& out);

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -167,6 +168,101 @@ bool headerMatches(const Header& h, std::uint64_t input_hash, ModelKind kind,
          h.payload_size == file_size - kHeaderSize;
 }
 
+/// Every vertex is the input vertex it names, bit for bit: hulls are made of input
+/// vertices, never of computed points.
+bool verticesAreInput(const MeshData& mesh, const ConvexPolytope& p) {
+  for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+    if (p.vertices[i] != mesh.vertices[static_cast<std::size_t>(p.original[i])]) return false;
+  }
+  return true;
+}
+
+/// Every real face is the input triangle it names (same vertices), and every input
+/// triangle is a real face of some leaf: the leaves cover the surface.
+bool facesCoverInput(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves) {
+  std::vector<char> covered(mesh.triangles.size(), 0);
+  for (const ConvexPolytope& p : leaves) {
+    for (std::size_t f = 0; f < p.faces.size(); ++f) {
+      const int source = p.face_source[f];
+      if (source < 0) continue;
+      Tri face(p.original[p.faces[f][0]], p.original[p.faces[f][1]], p.original[p.faces[f][2]]);
+      Tri input = mesh.triangles[static_cast<std::size_t>(source)];
+      std::sort(face.data(), face.data() + 3);
+      std::sort(input.data(), input.data() + 3);
+      if (face != input) return false;
+      covered[static_cast<std::size_t>(source)] = 1;
+    }
+  }
+  return std::find(covered.begin(), covered.end(), 0) == covered.end();
+}
+
+/// Every inner node's box contains its children's (to rounding of the hull build):
+/// a hierarchy that culls by a smaller hull would miss contacts.
+bool innerHullsContainChildren(const std::vector<ConvexPolytope>& leaves, const HullBvh& bvh,
+                               double slack) {
+  for (const HullBvhNode& node : bvh.nodes) {
+    if (node.leaf()) continue;
+    const Aabb& box = bvh.hulls[static_cast<std::size_t>(node.polytope)].bounds;
+    for (const int child : {node.left, node.right}) {
+      const Aabb& inner = bvh.polytope(leaves, child).bounds;
+      if ((inner.min.array() < box.min.array() - slack).any() ||
+          (inner.max.array() > box.max.array() + slack).any())
+        return false;
+    }
+  }
+  return true;
+}
+
+/// What makes decoded leaves and hierarchy (structurally valid) not a preprocessing
+/// of `mesh`, or null. Linear in the decoded size.
+const char* contentProblem(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves,
+                           const HullBvh& bvh) {
+  for (const ConvexPolytope& p : leaves) {
+    if (!verticesAreInput(mesh, p)) return "a leaf vertex is not the input vertex it names";
+  }
+  for (const ConvexPolytope& p : bvh.hulls) {
+    if (!verticesAreInput(mesh, p)) return "a hull vertex is not the input vertex it names";
+  }
+  if (!facesCoverInput(mesh, leaves))
+    return "its real faces are not the input triangles, or do not cover them";
+  Aabb box;
+  for (const Vec3& v : mesh.vertices) box.extend(v);
+  const double slack = box.empty() ? 0.0 : 1e-9 * (box.max - box.min).norm();
+  if (!innerHullsContainChildren(leaves, bvh, slack))
+    return "an inner hull of its hierarchy does not contain its children";
+  return nullptr;
+}
+
+/// Decodes the payload of a file whose header and checksum passed into `data`; null
+/// on success, else why it is refused (`data` unchanged).
+const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& data) {
+  const char* const malformed = "its payload is malformed";
+  Reader r(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize);
+  std::uint8_t convex = 0;
+  std::int32_t virtual_faces = 0;
+  if (!r.get(convex) || convex > 1 || !r.get(virtual_faces) || virtual_faces < 0) return malformed;
+  std::vector<ConvexPolytope> patches;
+  if (!getPolytopes(r, data.mesh, patches)) return malformed;
+  HullBvh bvh;
+  std::size_t node_count = 0;
+  if (!r.getCount(kNodeBytes, node_count)) return malformed;
+  bvh.nodes.resize(node_count);
+  for (HullBvhNode& n : bvh.nodes) {
+    std::int32_t left = -1, right = -1, polytope = -1;
+    if (!r.get(left) || !r.get(right) || !r.get(polytope)) return malformed;
+    n.left = left;
+    n.right = right;
+    n.polytope = polytope;
+  }
+  if (!getPolytopes(r, data.mesh, bvh.hulls) || !r.done()) return malformed;
+  if (!finishHullBvh(patches, bvh)) return "its hierarchy is not a tree over its leaves";
+  if (const char* problem = contentProblem(data.mesh, patches, bvh)) return problem;
+  data.patches = std::move(patches);
+  data.hierarchy = std::move(bvh);
+  fillStats(data, convex != 0, virtual_faces);
+  return nullptr;
+}
+
 }  // namespace
 
 std::uint64_t fnv1a64(const void* bytes, std::size_t size, std::uint64_t hash) {
@@ -225,36 +321,18 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 }
 
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
-                      PieceData& data) {
+                      PieceData& data, std::string* rejected) {
   Reader head(bytes.data(), bytes.size());
   Header h;
   if (!readHeader(head, h) || !headerMatches(h, input_hash, data.kind, bytes.size())) return false;
   const std::uint8_t* payload = bytes.data() + kHeaderSize;
   if (fnv1a64(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
-
-  Reader r(payload, bytes.size() - kHeaderSize);
-  std::uint8_t convex = 0;
-  std::int32_t virtual_faces = 0;
-  if (!r.get(convex) || convex > 1 || !r.get(virtual_faces) || virtual_faces < 0) return false;
-  std::vector<ConvexPolytope> patches;
-  if (!getPolytopes(r, data.mesh, patches)) return false;
-  HullBvh bvh;
-  std::size_t node_count = 0;
-  if (!r.getCount(kNodeBytes, node_count)) return false;
-  bvh.nodes.resize(node_count);
-  for (HullBvhNode& n : bvh.nodes) {
-    std::int32_t left = -1, right = -1, polytope = -1;
-    if (!r.get(left) || !r.get(right) || !r.get(polytope)) return false;
-    n.left = left;
-    n.right = right;
-    n.polytope = polytope;
-  }
-  if (!getPolytopes(r, data.mesh, bvh.hulls) || !r.done()) return false;
-  if (!finishHullBvh(patches, bvh)) return false;
-  data.patches = std::move(patches);
-  data.hierarchy = std::move(bvh);
-  fillStats(data, convex != 0, virtual_faces);
-  return true;
+  // Past the checksum the file is intact: what follows finds a file that was not
+  // written by this library for this input (forged, or written by a bug).
+  const char* problem = decodePayload(bytes, data);
+  if (problem == nullptr) return true;
+  if (rejected != nullptr) *rejected = problem;
+  return false;
 }
 
 namespace {
@@ -279,7 +357,8 @@ bool existsAsNonRegular(const std::string& path) {
 
 }  // namespace
 
-bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data) {
+bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
+                    std::string* rejected) {
   std::FILE* file = openRegularFile(path);
   if (file == nullptr) return false;
   // The header first: a foreign or stale file of any size is rejected unread.
@@ -298,7 +377,7 @@ bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData
          bytes.size() - kHeaderSize;
   }
   std::fclose(file);
-  return ok && decodePieceCache(bytes, input_hash, data);
+  return ok && decodePieceCache(bytes, input_hash, data, rejected);
 }
 
 Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data) {

@@ -34,11 +34,18 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 /// against them. False, leaving `data` unchanged, unless the bytes are a complete
 /// file of this version and kind for this input with a matching checksum and valid
 /// contents. Never trusts a count: each is bounded by the bytes that remain.
+/// The checksum finds damage, not forgery; past it the contents are checked against
+/// the input: every hull vertex is the input vertex it names (bit for bit), real
+/// faces are the input triangles and cover them all, the hierarchy is a tree over
+/// the leaves and every inner hull's box contains its children's. A file failing
+/// those (forged, or written by a bug) sets `*rejected` (if given) to the reason;
+/// a damaged, stale or foreign file leaves it unchanged.
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
-                      PieceData& data);
+                      PieceData& data, std::string* rejected = nullptr);
 
 /// decodePieceCache on the file at `path`; false when it is missing or unreadable.
-bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data);
+bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
+                    std::string* rejected = nullptr);
 
 /// Writes the file through a temporary file renamed over `path`, so readers never
 /// see a partial file. File status when it cannot be written.

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -125,10 +126,19 @@ Status preprocess(PieceData& data, const ProgressCallback& progress) {
   return Status::success();
 }
 
+/// The warning for a cache file that passed its checksum but not the content checks.
+Status refusedCache(const std::string& path, const std::string& reason, const Status& saved) {
+  std::string message = "cache file '" + path + "' passed its checksum but " + reason +
+                        ": not trusted; the piece was rebuilt";
+  message += saved.ok() ? " and the file rewritten" : "; " + saved.message();
+  return Status(ErrorCode::File, std::move(message));
+}
+
 }  // namespace
 
 Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  if (!knownKind(kind)) return Status(ErrorCode::InvalidArgument, "unknown ModelKind");
   if (options.progress) options.progress(0.0, "validating piece");
   if (Status s = detail::validateArrays(mesh); !s.ok()) return s;
 
@@ -146,11 +156,13 @@ Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& o
   data->mesh = std::move(mesh);
   data->bounds = referencedBounds(data->mesh);
   Status file_status;
-  if (use_cache && detail::loadPieceCache(options.cache_file, key, *data)) {
+  std::string rejected;
+  if (use_cache && detail::loadPieceCache(options.cache_file, key, *data, &rejected)) {
     data->stats.from_cache = true;
   } else {
     if (Status s = preprocess(*data, options.progress); !s.ok()) return s;
     if (use_cache) file_status = detail::savePieceCache(options.cache_file, key, *data);
+    if (!rejected.empty()) file_status = refusedCache(options.cache_file, rejected, file_status);
   }
   data->stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

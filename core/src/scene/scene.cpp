@@ -95,15 +95,27 @@ struct Job {
   Directions dirs;
 };
 
-/// A placement the queries can use: centres finite and within kMaxCoordinate (as
-/// vertices are, so no distance or motion overflows), a quaternion that normalises.
-Status checkPlacement(const Placement& p) {
+/// `p` as the queries use it: centres finite and within kMaxCoordinate (as vertices
+/// are, so no distance or motion overflows), the quaternion normalised (any finite,
+/// non-zero one, as sc.h's SetTransformation does).
+Result<Placement> usablePlacement(const Placement& p) {
   if (!detail::withinCoordinateLimit(p.world_center) ||
-      !detail::withinCoordinateLimit(p.local_center) ||
-      !detail::allFinite(p.orientation.coeffs()) || p.orientation.norm() < 0.5)
+      !detail::withinCoordinateLimit(p.local_center))
     return Status(ErrorCode::InvalidArgument,
                   "placement not finite or a centre beyond 1e100 in magnitude");
-  return {};
+  const Eigen::Vector4d q = p.orientation.coeffs();
+  if (!detail::allFinite(q))
+    return Status(ErrorCode::InvalidArgument, "orientation quaternion not finite");
+  const double largest = q.cwiseAbs().maxCoeff();
+  if (largest == 0.0) return Status(ErrorCode::InvalidArgument, "orientation quaternion zero");
+  // Eigen's normalize() in the usual range (bit for bit what setGroupPlacement always
+  // did); a rescaling first where squaring the components would underflow or overflow.
+  Placement unit = p;
+  if (largest > 1e-150 && largest < 1e150)
+    unit.orientation.normalize();
+  else
+    unit.setOrientation(p.orientation);
+  return unit;
 }
 
 GroupView viewOf(const GroupRec& g) {
@@ -423,11 +435,12 @@ Status Scene::addObject(int id, ModelPtr model, const Placement& placement) {
   if (model->kind() != impl_->kind)
     return Status(ErrorCode::InvalidOperation, "object type differs from the scene type");
   if (impl_->objects.count(id)) return invalidId("object id already in the scene");
-  if (Status s = checkPlacement(placement); !s.ok()) return s;
+  const Result<Placement> unit = usablePlacement(placement);
+  if (!unit.ok()) return unit.status();
   ObjectRec o;
   o.id = id;
   o.model = std::move(model);
-  o.own = placement;
+  o.own = unit.value();
   o.static_box = transformBox(o.model->bounds(), o.own.worldFromLocal());
   auto it = impl_->objects.emplace(id, std::move(o)).first;
   impl_->groups.at(kStaticGroup).members.push_back(&it->second);
@@ -490,9 +503,15 @@ Status Scene::setGroupPlacement(int gid, const Placement& placement) {
     return Status(ErrorCode::InvalidOperation, "the static group does not move");
   const auto it = impl_->groups.find(gid);
   if (it == impl_->groups.end()) return invalidId("unknown group id");
-  if (Status s = checkPlacement(placement); !s.ok()) return s;
-  it->second.placement = placement;
-  it->second.placement.orientation.normalize();
+  const Result<Placement> unit = usablePlacement(placement);
+  if (!unit.ok()) return unit.status();
+  it->second.placement = unit.value();
+  return {};
+}
+
+Status Scene::teleportGroup(int gid, const Placement& placement) {
+  if (Status s = setGroupPlacement(gid, placement); !s.ok()) return s;
+  impl_->table.forgetGroup(gid);  // both directions of every pair: the path is cut
   return {};
 }
 
@@ -516,8 +535,12 @@ Status Scene::setGroupActivity(int gid, Activity activity) {
   if (it == impl_->groups.end()) return invalidId("unknown group id");
   it->second.activity = activity;
   // A passive or inactive group keeps no collision status (manual 8.4): drop it now,
-  // so that re-activating before the next update cannot resume it.
-  if (activity == Activity::Passive || activity == Activity::Inactive)
+  // so that re-activating before the next update cannot resume it. An inactive group
+  // takes part in no pair (Table 8-1), as opponent either: its pairs are dropped both
+  // ways, which makes INACTIVE then ACTIVE sc.h's teleport (Scene::teleportGroup).
+  if (activity == Activity::Inactive)
+    impl_->table.forgetGroup(gid);
+  else if (activity == Activity::Passive)
     impl_->table.forgetTarget(gid);
   return {};
 }

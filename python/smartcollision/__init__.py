@@ -14,7 +14,6 @@ Poses are world-from-model: a 4x4 matrix, a position (3,), a (7,) array
 See PairTracker, Scene, Model, Settings and Result.
 """
 from ._core import *  # noqa: F401,F403
-from ._core import __doc__ as _core_doc  # noqa: F401
 
 __version__ = "0.1.0"
 

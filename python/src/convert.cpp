@@ -36,6 +36,8 @@ void requireKind(const py::handle& h, const char* kinds, const char* what) {
 }
 
 Doubles doublesFrom(const py::handle& h, const char* what) {
+  // Already float64 and C-contiguous: used in place (the per-query path).
+  if (py::isinstance<Doubles>(h)) return py::reinterpret_borrow<Doubles>(h);
   requireKind(h, "fiu", what);
   Doubles a = Doubles::ensure(h);
   if (!a) throw py::type_error(std::string(what) + ": not convertible to a float64 array");

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The C++ half of bench/python_overhead.py: the same queries as the Python half
-// (two boxes, the same pose cycles), timed through sc::PairTracker directly.
-// Prints "name nanoseconds_per_call" lines.
-// Usage: python_overhead [CALLS]
+// The C++ half of bench/python_overhead.py, a shared library the script loads with
+// ctypes: the same queries as the Python half (two boxes, the same pose cycles),
+// timed through sc::PairTracker directly, in the same process, so that the two
+// halves can alternate in short rounds.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -39,40 +39,38 @@ sc::Placement pose(int k, double height) {
   return p;
 }
 
-double nsPerCall(const std::vector<sc::Placement>& poses, long calls) {
-  const sc::ModelPtr a = boxModel(1, 1, 1), b = boxModel(2, 0.5, 0.5);
-  const sc::Part pa{a.get(), sc::Rigid(), 0}, pb{b.get(), sc::Rigid(), 1};
+/// One pair followed along a cycle, as the Python half's tracker is.
+struct Scenario {
+  explicit Scenario(double height) : a(boxModel(1, 1, 1)), b(boxModel(2, 0.5, 0.5)) {
+    for (int k = 0; k < kPoses; ++k) poses.push_back(pose(k, height));
+    // Seen apart first, so a penetrating cycle is tracked.
+    run(pose(0, 3.0));
+  }
+  void run(const sc::Placement& p) {
+    const sc::Part pa{a.get(), sc::Rigid(), 0}, pb{b.get(), sc::Rigid(), 1};
+    tracker.update({&pa, 1, p}, {&pb, 1, sc::Placement()}, {true, false}, settings, out);
+  }
+  sc::ModelPtr a, b;
+  std::vector<sc::Placement> poses;
   sc::PairTracker tracker;
   sc::SceneSettings settings;
   sc::DirectedResult out[2];
-  const sc::GroupView gb{&pb, 1, sc::Placement()};
-  // Seen apart first, so a penetrating cycle is tracked.
-  tracker.update({&pa, 1, pose(0, 3.0)}, gb, {true, false}, settings, out);
-  double sink = 0.0;
-  const auto run = [&](long n) {
-    for (long i = 0; i < n; ++i) {
-      tracker.update({&pa, 1, poses[static_cast<size_t>(i % kPoses)]}, gb, {true, false}, settings,
-                     out);
-      sink += out[0].distance;
-    }
-  };
-  run(calls / 10);
-  const auto start = std::chrono::steady_clock::now();
-  run(calls);
-  const std::chrono::duration<double, std::nano> ns = std::chrono::steady_clock::now() - start;
-  if (sink == 0.123456789) std::puts("");  // keeps the loop
-  return ns.count() / static_cast<double>(calls);
-}
+};
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  const long calls = argc > 1 ? std::atol(argv[1]) : 200000;
-  std::vector<sc::Placement> apart, pressed;
-  for (int k = 0; k < kPoses; ++k) {
-    apart.push_back(pose(k, 3.0));
-    pressed.push_back(pose(k, 1.4));
+/// Nanoseconds per query over `calls` queries of the apart (0) or penetrating (1)
+/// cycle; the tracker carries on from the previous call.
+extern "C" double sc_bench_cpp_ns(int penetrating, long calls) {
+  static Scenario apart(3.0), pressed(1.4);
+  Scenario& s = penetrating ? pressed : apart;
+  double sink = 0.0;
+  const auto start = std::chrono::steady_clock::now();
+  for (long i = 0; i < calls; ++i) {
+    s.run(s.poses[static_cast<size_t>(i % kPoses)]);
+    sink += s.out[0].distance;
   }
-  std::printf("apart %.1f\n", nsPerCall(apart, calls));
-  std::printf("penetrating %.1f\n", nsPerCall(pressed, calls));
+  const std::chrono::duration<double, std::nano> ns = std::chrono::steady_clock::now() - start;
+  if (sink == 0.123456789) std::puts("");  // keeps the loop
+  return ns.count() / static_cast<double>(calls);
 }

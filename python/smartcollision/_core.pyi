@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Type stubs of smartcollision._core (re-exported by smartcollision)."""
 import enum
+import os
 from typing import Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -110,11 +111,11 @@ class PieceStats:
 class Model:
     def __init__(self, vertices: ArrayLike, triangles: ArrayLike,
                  kind: ModelKind = ModelKind.CLOSED_POLYHEDRON,
-                 cache_file: Optional[str] = None) -> None: ...
+                 cache_file: Optional[Union[str, os.PathLike]] = None) -> None: ...
     @staticmethod
     def from_pieces(pieces: Sequence[Tuple[ArrayLike, ArrayLike]],
                     kind: ModelKind = ModelKind.CLOSED_POLYHEDRON,
-                    cache_files: Optional[Sequence[str]] = None) -> Model: ...
+                    cache_files: Optional[Sequence[Union[str, os.PathLike]]] = None) -> Model: ...
     @property
     def kind(self) -> ModelKind: ...
     @property

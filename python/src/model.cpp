@@ -13,6 +13,14 @@
 namespace scpy {
 namespace {
 
+/// A str or os.PathLike as a path; None as no cache. Anything else is a TypeError.
+std::string pathOf(const py::object& path) {
+  if (path.is_none()) return {};
+  const py::object p = py::module_::import("os").attr("fspath")(path);
+  if (!py::isinstance<py::str>(p)) throw py::type_error("cache file: a str or os.PathLike path");
+  return p.cast<std::string>();
+}
+
 sc::PiecePtr build(sc::ModelKind kind, sc::MeshData mesh, const std::string& cache_file) {
   sc::BuildOptions options;
   options.cache_file = cache_file;
@@ -34,9 +42,8 @@ PyModel fromPieces(const py::sequence& pieces, sc::ModelKind kind, const py::obj
   for (size_t i = 0; i < py::len(pieces); ++i) {
     const py::sequence vf = pieces[i].cast<py::sequence>();
     if (py::len(vf) != 2) fail(sc::ErrorCode::InvalidArgument, "a piece is (vertices, triangles)");
-    const std::string cache = cache_files.is_none()
-                                  ? std::string()
-                                  : py::str(cache_files[py::int_(i)]).cast<std::string>();
+    const std::string cache =
+        cache_files.is_none() ? std::string() : pathOf(cache_files[py::int_(i)]);
     built.push_back(build(kind, meshFrom(vf[0], vf[1]), cache));
   }
   return {std::make_shared<const sc::Model>(kind, std::move(built))};
@@ -97,8 +104,7 @@ Immutable once built; one model may be used by any number of trackers and
 scenes, on any thread. Preprocessing runs without the GIL.)")
       .def(py::init([](const py::object& vertices, const py::object& triangles, sc::ModelKind kind,
                        const py::object& cache_file) {
-             const std::string cache =
-                 cache_file.is_none() ? std::string() : py::str(cache_file).cast<std::string>();
+             const std::string cache = pathOf(cache_file);
              std::vector<sc::PiecePtr> pieces{build(kind, meshFrom(vertices, triangles), cache)};
              return PyModel{std::make_shared<const sc::Model>(kind, std::move(pieces))};
            }),

@@ -59,8 +59,8 @@ void print(const double* v, int n) {
 }
 
 void printFeature(const sc::Feature& f) {
-  std::printf(" %d %d %d %d %d", static_cast<int>(f.type), f.vertices[0], f.vertices[1], f.vertices[2],
-              f.is_virtual ? 1 : 0);
+  std::printf(" %d %d %d %d %d", static_cast<int>(f.type), f.vertices[0], f.vertices[1],
+              f.vertices[2], f.is_virtual ? 1 : 0);
 }
 
 void printResult(const sc::DirectedResult& r, const std::vector<sc::ContactPoint>& contacts) {
@@ -70,8 +70,8 @@ void printResult(const sc::DirectedResult& r, const std::vector<sc::ContactPoint
                             &r.contact_position}) {
     print(v->data(), 3);
   }
-  const double q[4] = {r.contact_orientation.w(), r.contact_orientation.x(), r.contact_orientation.y(),
-                       r.contact_orientation.z()};
+  const double q[4] = {r.contact_orientation.w(), r.contact_orientation.x(),
+                       r.contact_orientation.y(), r.contact_orientation.z()};
   print(q, 4);
   std::printf(" %d %d %d %d", r.target_object, r.opponent_object, r.target_piece, r.opponent_piece);
   printFeature(r.target_feature);
@@ -82,7 +82,8 @@ void printResult(const sc::DirectedResult& r, const std::vector<sc::ContactPoint
     print(c.point_on_opponent.data(), 3);
     print(c.normal.data(), 3);
     print(&c.separation, 1);
-    std::printf(" %d %d %d %d", c.target_object, c.opponent_object, c.target_piece, c.opponent_piece);
+    std::printf(" %d %d %d %d", c.target_object, c.opponent_object, c.target_piece,
+                c.opponent_piece);
   }
   std::printf("\n");
 }

@@ -156,3 +156,9 @@ def test_cache_file(tmp_path):
         m = sc.Model(v, f, cache_file=str(tmp_path / "missing" / "dir" / "box.sccache"))
     assert m.stats().triangles == 12
     assert any(issubclass(w.category, sc.CacheFileWarning) for w in caught)
+    # A path object works; a number is not a path.
+    assert sc.Model(v, f, cache_file=tmp_path / "box.sccache").stats().from_cache
+    with pytest.raises(TypeError):
+        sc.Model(v, f, cache_file=3)
+    pieces = sc.Model.from_pieces([(v, f), (v + 3, f)], cache_files=[path, tmp_path / "second.sccache"])
+    assert pieces.piece_count == 2 and pieces.stats(0).from_cache and not pieces.stats(1).from_cache

@@ -123,9 +123,12 @@ Raises InvalidArgumentError (shape, non-finite, bad index), InvalidGeometryError
                   py::arg("cache_files") = py::none(),
                   "Builds a model of several pieces, each a (vertices, triangles) pair;\n"
                   "cache_files, if given, holds one path per piece.")
-      .def_property_readonly("kind", [](const PyModel& s) { return s.model->kind(); })
-      .def_property_readonly("piece_count",
-                             [](const PyModel& s) { return s.model->pieces().size(); })
+      .def_property_readonly(
+          "kind", [](const PyModel& s) { return s.model->kind(); },
+          "CLOSED_POLYHEDRON or TRIANGLE_SOUP.")
+      .def_property_readonly(
+          "piece_count", [](const PyModel& s) { return s.model->pieces().size(); },
+          "Number of pieces.")
       .def_property_readonly(
           "bounds",
           [](const PyModel& s) {

@@ -105,16 +105,20 @@ other than status are meaningful only when ok.)")
       .def_property_readonly(
           "status", field([](const R& r) { return r.code; }),
           "OK, NO_RESULT (not computed, beyond max_distance) or INVALID_INITIAL_TRANSFORMATION.")
-      .def_property_readonly("ok", field([](const R& r) { return r.code == sc::ErrorCode::Ok; }))
-      .def_property_readonly("penetrating", field([](const R& r) { return r.penetrating(); }))
+      .def_property_readonly("ok", field([](const R& r) { return r.code == sc::ErrorCode::Ok; }),
+                             "status is OK: the other fields are meaningful.")
+      .def_property_readonly("penetrating", field([](const R& r) { return r.penetrating(); }),
+                             "ok and distance <= 0.")
       .def_property_readonly("distance", field([](const R& r) { return r.distance; }),
                              "> 0: the minimum distance; <= 0: -|tpdv|.")
       .def_property_readonly("normal", field([](const R& r) { return toArray(r.normal); }),
                              "Unit, from the opponent towards the target.")
-      .def_property_readonly("point_on_target",
-                             field([](const R& r) { return toArray(r.point_on_target); }))
+      .def_property_readonly(
+          "point_on_target", field([](const R& r) { return toArray(r.point_on_target); }),
+          "Closest point (apart) or contact point at the contact pose, on the target.")
       .def_property_readonly("point_on_opponent",
-                             field([](const R& r) { return toArray(r.point_on_opponent); }))
+                             field([](const R& r) { return toArray(r.point_on_opponent); }),
+                             "The same on the opponent.")
       .def_property_readonly(
           "tpdv", field([](const R& r) { return toArray(r.tpdv); }),
           "Translational penetration depth vector: current centre minus contact centre.")
@@ -136,13 +140,19 @@ other than status are meaningful only when ok.)")
             return poseMatrix(c);
           },
           "4x4 world-from-model matrix of the target at contact.")
-      .def_property_readonly("target_object", field([](const R& r) { return r.target_object; }))
-      .def_property_readonly("opponent_object", field([](const R& r) { return r.opponent_object; }))
-      .def_property_readonly("target_piece", field([](const R& r) { return r.target_piece; }))
-      .def_property_readonly("opponent_piece", field([](const R& r) { return r.opponent_piece; }))
-      .def_property_readonly("target_feature", field([](const R& r) { return r.target_feature; }))
+      .def_property_readonly("target_object", field([](const R& r) { return r.target_object; }),
+                             "Object id of the target (a tracker: 0 for a, 1 for b).")
+      .def_property_readonly("opponent_object", field([](const R& r) { return r.opponent_object; }),
+                             "Object id of the opponent.")
+      .def_property_readonly("target_piece", field([](const R& r) { return r.target_piece; }),
+                             "Piece of the target's model holding the contact.")
+      .def_property_readonly("opponent_piece", field([](const R& r) { return r.opponent_piece; }),
+                             "Piece of the opponent's model holding the contact.")
+      .def_property_readonly("target_feature", field([](const R& r) { return r.target_feature; }),
+                             "Closest feature of the target (vertex indices within its piece).")
       .def_property_readonly("opponent_feature",
-                             field([](const R& r) { return r.opponent_feature; }))
+                             field([](const R& r) { return r.opponent_feature; }),
+                             "Closest feature of the opponent.")
       .def("__repr__", [](const PyResult& p) {
         return "Result(" + py::str(py::cast(p.r.code)).cast<std::string>() +
                ", distance=" + py::repr(py::float_(p.r.distance)).cast<std::string>() + ")";

@@ -2,6 +2,7 @@
 """Separate trackers on separate threads (queries run without the GIL) give what
 they give alone; one object used by two threads at once refuses, never races."""
 import threading
+import time
 
 import numpy as np
 
@@ -70,3 +71,26 @@ def test_shared_scene_refuses_while_updating():
     # The scene is intact: one more update lists the same pairs as before.
     n = len(scene)
     assert scene.update() == n
+
+
+def test_preprocessing_releases_the_gil():
+    """While a model is preprocessed on one thread, another keeps running Python:
+    with the GIL held it could not run at all inside the call's window."""
+    v, f = torus(around=40, tube=20)
+    window = {}
+
+    def build():
+        window["start"] = time.perf_counter()
+        sc.Model(v, f)
+        window["end"] = time.perf_counter()
+    worker = threading.Thread(target=build)
+    ticks = []
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.perf_counter())
+    worker.join()
+    start, end = window["start"], window["end"]
+    margin = 0.1 * (end - start)
+    inside = [t for t in ticks if start + margin < t < end - margin]
+    assert end - start > 0.02, "the build must be long enough to tell"
+    assert len(inside) > 100

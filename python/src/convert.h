@@ -26,6 +26,17 @@ struct Error : std::runtime_error {
 /// Raises unless `status` is Ok.
 void check(const sc::Status& status);
 
+/// An argument taken as any Python object and checked by the conversions below,
+/// named in signatures (help()) as the stubs name it.
+template <int Kind>
+struct Arg {
+  py::object value;
+  operator const py::object&() const { return value; }  // NOLINT: reads as the object
+};
+using PoseArg = Arg<0>;      ///< "Pose"
+using ArrayArg = Arg<1>;     ///< "ArrayLike"
+using OptArrayArg = Arg<2>;  ///< "Optional[ArrayLike]"
+
 /// vertices: real array of shape (n, 3); triangles: integer array of shape (m, 3).
 sc::MeshData meshFrom(const py::handle& vertices, const py::handle& triangles);
 
@@ -43,3 +54,21 @@ py::array_t<double> toArray(const sc::Quat& q);  ///< w, x, y, z
 py::array_t<double> poseMatrix(const sc::Placement& p);
 
 }  // namespace scpy
+
+namespace pybind11::detail {
+
+template <int Kind>
+struct type_caster<scpy::Arg<Kind>> {
+  PYBIND11_TYPE_CASTER(scpy::Arg<Kind>,
+                       _<Kind == 0>(_("Pose"),
+                                    _<Kind == 1>(_("ArrayLike"), _("Optional[ArrayLike]"))));
+  bool load(handle src, bool) {
+    value.value = reinterpret_borrow<object>(src);
+    return true;
+  }
+  static handle cast(const scpy::Arg<Kind>& a, return_value_policy, handle) {
+    return a.value.inc_ref();
+  }
+};
+
+}  // namespace pybind11::detail

@@ -102,7 +102,7 @@ void bindModel(py::module_& m) {
 
 Immutable once built; one model may be used by any number of trackers and
 scenes, on any thread. Preprocessing runs without the GIL.)")
-      .def(py::init([](const py::object& vertices, const py::object& triangles, sc::ModelKind kind,
+      .def(py::init([](const ArrayArg& vertices, const ArrayArg& triangles, sc::ModelKind kind,
                        const py::object& cache_file) {
              const std::string cache = pathOf(cache_file);
              std::vector<sc::PiecePtr> pieces{build(kind, meshFrom(vertices, triangles), cache)};

@@ -100,12 +100,12 @@ py::dict resultArrays(const std::vector<sc::PairStatus>& pairs) {
 void bindObjects(py::class_<PyScene>& c) {
   c.def(
        "add_object",
-       [](PyScene& s, int id, const PyModel& model, const py::object& pose,
-          const py::object& center) {
+       [](PyScene& s, int id, const PyModel& model, const PoseArg& pose,
+          const OptArrayArg& center) {
          const sc::Vec3 local = vec3From(center, "center");
          sc::Placement p;
          p.local_center = local, p.world_center = local;  // identity pose
-         if (!pose.is_none()) p = placementFrom(pose, local);
+         if (!pose.value.is_none()) p = placementFrom(pose, local);
          check(s.idle().addObject(id, model.model, p));
        },
        py::arg("id"), py::arg("model"), py::arg("pose") = py::none(),
@@ -149,7 +149,7 @@ void bindGroups(py::class_<PyScene>& c) {
           "4x4 world-from-group matrix (the group's frame is its first object's).")
       .def(
           "set_group_pose",
-          [](PyScene& s, int gid, const py::object& pose) {
+          [](PyScene& s, int gid, const PoseArg& pose) {
             if (gid == sc::kStaticGroup) check(s.idle().setGroupPlacement(gid, {}));
             const sc::Placement p = placementFrom(pose, centerOf(s, gid));
             check(s.idle().setGroupPlacement(gid, p));

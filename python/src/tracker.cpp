@@ -31,7 +31,7 @@ struct PyTracker {
   bool busy = false;
 
   PyTracker(const PyModel& a, const PyModel& b, const std::optional<sc::SceneSettings>& settings_,
-            const py::object& center_a, const py::object& center_b)
+            const OptArrayArg& center_a, const OptArrayArg& center_b)
       : models{a.model, b.model} {
     for (int i = 0; i < 2; ++i) parts[i] = {models[i].get(), sc::Rigid(), i};
     centers[0] = vec3From(center_a, "center_a");
@@ -45,7 +45,7 @@ struct PyTracker {
     settings = s;
   }
 
-  void run(const py::object& pose_a, const py::object& pose_b, sc::Directions directions) {
+  void run(const PoseArg& pose_a, const PoseArg& pose_b, sc::Directions directions) {
     const sc::GroupView a{&parts[0], 1, placementFrom(pose_a, centers[0])};
     const sc::GroupView b{&parts[1], 1, placementFrom(pose_b, centers[1])};
     BusyScope scope(busy, "PairTracker");
@@ -60,7 +60,7 @@ struct PyTracker {
   }
 };
 
-double distanceOf(PyTracker& t, const py::object& pose_a, const py::object& pose_b) {
+double distanceOf(PyTracker& t, const PoseArg& pose_a, const PoseArg& pose_b) {
   t.run(pose_a, pose_b, {true, false});
   const sc::DirectedResult& r = t.out[0];
   if (r.code == sc::ErrorCode::Ok) return r.distance;
@@ -205,7 +205,7 @@ each model's centre of rotation in its own frame (default: its origin). Queries
 run without the GIL; one tracker must not be used by two threads at once
 (InvalidOperationError), separate trackers may.)")
       .def(py::init<const PyModel&, const PyModel&, const std::optional<sc::SceneSettings>&,
-                    const py::object&, const py::object&>(),
+                    const OptArrayArg&, const OptArrayArg&>(),
            py::arg("a"), py::arg("b"), py::arg("settings") = py::none(),
            py::arg("center_a") = py::none(), py::arg("center_b") = py::none())
       .def_property(
@@ -218,7 +218,7 @@ inf beyond settings.max_distance. Raises InitialIntersectionError when the pair
 intersects and has never been seen apart (unless settings.resolve_initial_intersection).)")
       .def(
           "penetration",
-          [](PyTracker& t, const py::object& pa, const py::object& pb) {
+          [](PyTracker& t, const PoseArg& pa, const PoseArg& pb) {
             t.run(pa, pb, {true, false});
             return resultOf(t.out[0], t.centers[0]);
           },
@@ -226,7 +226,7 @@ intersects and has never been seen apart (unless settings.resolve_initial_inters
           "Full result with a as target and b as opponent (see Result).")
       .def(
           "update",
-          [](PyTracker& t, const py::object& pa, const py::object& pb) {
+          [](PyTracker& t, const PoseArg& pa, const PoseArg& pb) {
             t.run(pa, pb, {true, true});
             return py::make_tuple(resultOf(t.out[0], t.centers[0]),
                                   resultOf(t.out[1], t.centers[1]));

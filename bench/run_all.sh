@@ -43,6 +43,12 @@ run haptic_periods bash -c '"$0" 10 "$1" > "$2"' "$root/bench/haptic_periods.sh"
   "$out/haptic_periods.csv"
 run haptic_cavity_lockstep "$build/demos/haptic_coupling" "${cavity[@]}" --lockstep \
   --json "$out/haptic_cavity_lockstep.json"
+# The Python binding's overhead per call (when the module is built), its table in the log.
+python="$(sed -n 's/^Python3_EXECUTABLE:FILEPATH=//p' "$build/CMakeCache.txt")"
+if [[ -n "$python" && -f "$build/bench/python_overhead.so" ]]; then
+  run python_overhead env PYTHONPATH="$build/python" "$python" "$root/bench/python_overhead.py" \
+    "$build/bench/python_overhead.so" --check
+fi
 if [[ "${SC_BENCH_SOAK:-0}" == 1 ]]; then
   echo "== soak"
   "$root/bench/soak.sh" 1000000 potential "$build" > "$out/soak.csv"

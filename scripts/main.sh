@@ -11,7 +11,10 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/setup.sh"
 cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build "$root/build" -j "${SC_JOBS:-$(nproc)}" --target hello_smartcollision stacking
+targets=(hello_smartcollision stacking)
+# The Python package too, when configured (pybind11 found).
+if grep -q '^SC_BUILD_PYTHON:BOOL=ON' "$root/build/CMakeCache.txt"; then targets+=(sc_python); fi
+cmake --build "$root/build" -j "${SC_JOBS:-$(nproc)}" --target "${targets[@]}"
 if [[ $# -eq 0 ]]; then set -- --scene pile --hz 60; fi
 "$root/build/demos/hello_smartcollision"
 if [[ -n "${DISPLAY:-}" ]]; then

@@ -16,6 +16,7 @@ packages=(
   libcgal-demo
   clang libclang-rt-14-dev
   gnuplot-nox
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 
 missing=()

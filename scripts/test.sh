@@ -36,7 +36,7 @@ ctest --test-dir "$root/build" -j "$jobs" --output-on-failure --timeout 1200
 
 # Sanitized passes: clang, -O1, without demos and benchmarks.
 sanitized=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
-           -DSC_BUILD_DEMOS=OFF -DSC_BUILD_BENCH=OFF)
+           -DSC_BUILD_DEMOS=OFF -DSC_BUILD_BENCH=OFF -DSC_BUILD_PYTHON=OFF)
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang, with fuzz targets) and tests"
 (

@@ -35,7 +35,7 @@ Feature featureAt(const Leaf& leaf, const Rigid& frame_from_group, const Vec3& p
                   const int* simplex, int count) {
   const Rigid frame_from_leaf = frame_from_group * leaf.group_from_leaf;
   const Vec3 local = frame_from_leaf.inverse() * point;
-  const double tol = 1e-9 * (1.0 + leaf.poly->radius + leaf.poly->center.norm());
+  const double tol = 1e-9 * (leaf.poly->radius + leaf.poly->center.norm());  // as featureTolerance
   return closestFeature(*leaf.poly, local, simplex, count, tol);
 }
 

@@ -66,8 +66,19 @@ void toWorld(const ProxyOutcome& o, const GroupView& target, const GroupView& op
   r.contact_orientation = Quat(world_from_contact.rotation).normalized();
 }
 
+/// The settings with the tolerance raised to its floor for this pair (settings.h):
+/// a contact normal read from closest points a tolerance apart is off by about
+/// (coordinate rounding) / tolerance, and the depth by that times the depth.
+SceneSettings effectiveSettings(const SceneSettings& settings, const GroupPairQuery& query,
+                                const Vec3& goal_center) {
+  SceneSettings s = settings;
+  const double length = query.targetSize() + goal_center.norm();
+  s.tolerance = std::max(settings.tolerance, kMinRelativeTolerance * length);
+  return s;
+}
+
 void runDirection(PairState& state, int dir, const GroupView& target, const GroupView& opponent,
-                  const SceneSettings& settings, DirectedResult& out) {
+                  const SceneSettings& requested, DirectedResult& out) {
   GroupPairQuery& query = state.query[dir];
   query.bind(target, opponent);
   const Rigid goal =
@@ -75,6 +86,7 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   ProxyOutcome outcome;
   ProxyTracker& tracker = state.tracker[dir];
   const Vec3& center = target.placement.local_center;
+  const SceneSettings settings = effectiveSettings(requested, query, goal * center);
   tracker.update(query, goal, center, settings, outcome);
   Rigid free_pose;
   if (outcome.code == ErrorCode::InvalidInitialTransformation &&

@@ -37,6 +37,14 @@ struct PieceStats {
   double seconds = 0.0;   ///< wall time of preprocessing
 };
 
+/// Extents a piece may have: the largest side of the box of the vertices its
+/// triangles use lies in [kMinPieceExtent, kMaxPieceExtent] (or is 0: a soup that
+/// is one point). Within it every internal threshold is relative to the models'
+/// size, so results have the same relative accuracy at every scale (docs/api.md,
+/// "Scale"); beyond it products of coordinates under- or overflow.
+inline constexpr double kMinPieceExtent = 1e-9;
+inline constexpr double kMaxPieceExtent = 1e9;
+
 /// Called during preprocessing with a fraction in [0, 1] and the stage's name.
 using ProgressCallback = std::function<void(double fraction, const char* stage)>;
 
@@ -69,7 +77,8 @@ using PiecePtr = std::shared_ptr<const Piece>;
 /// Closed polyhedron: every edge shared by exactly two triangles with opposite
 /// winding, no degenerate triangle, one connected shell; inside-out is flipped.
 /// Triangle soup: anything finite with valid indices.
-/// @return the piece; InvalidArgument (non-finite, bad index) or InvalidGeometry
+/// @return the piece; InvalidArgument (non-finite, bad index, extent outside
+///   [kMinPieceExtent, kMaxPieceExtent]) or InvalidGeometry
 ///   (closed rules) without a piece; or the piece with a File warning when the cache
 ///   file could not be written.
 SC_API Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options = {});

@@ -8,9 +8,10 @@ namespace sc {
 
 /// Default of SceneSettings::tolerance (model units).
 inline constexpr double kDefaultTolerance = 1e-3;
-/// Floor of the tolerance, relative to the target's size plus the distance of its
-/// centre from the opponent's origin: a smaller one is raised to it per pair, since
-/// rounding of the coordinates would then tilt contact normals by more than it keeps.
+/// Floor of the tolerance: a pair's tolerance is raised to kMinRelativeTolerance x
+/// sqrt(r (r + d)), r the target's radius and d its centre's distance from the
+/// opponent's origin; below it, rounding of the coordinates tilts contact normals
+/// enough to move the contact configuration by more than the tolerance.
 inline constexpr double kMinRelativeTolerance = 1e-7;
 /// Default of SceneSettings::safety_coefficient; the manual says not to change it.
 inline constexpr double kDefaultSafetyCoefficient = 0.49;

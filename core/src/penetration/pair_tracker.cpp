@@ -66,14 +66,16 @@ void toWorld(const ProxyOutcome& o, const GroupView& target, const GroupView& op
   r.contact_orientation = Quat(world_from_contact.rotation).normalized();
 }
 
-/// The settings with the tolerance raised to its floor for this pair (settings.h):
-/// a contact normal read from closest points a tolerance apart is off by about
-/// (coordinate rounding) / tolerance, and the depth by that times the depth.
+/// The settings with the tolerance raised to its floor for this pair (settings.h).
+/// A contact normal read from closest points a tolerance t apart is tilted by about
+/// (rounding of the coordinates, ~1e-15 L) / t, which moves the contact pose by that
+/// times the depth (~ the target's radius r): within t when t >= ~4e-8 sqrt(r L).
 SceneSettings effectiveSettings(const SceneSettings& settings, const GroupPairQuery& query,
                                 const Vec3& goal_center) {
   SceneSettings s = settings;
-  const double length = query.targetSize() + goal_center.norm();
-  s.tolerance = std::max(settings.tolerance, kMinRelativeTolerance * length);
+  const double r = query.targetSize();
+  const double floor = kMinRelativeTolerance * std::sqrt(r * (r + goal_center.norm()));
+  s.tolerance = std::max(settings.tolerance, floor);
   return s;
 }
 

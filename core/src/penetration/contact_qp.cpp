@@ -39,11 +39,11 @@ VecX solvePassive(const MatX& e, const VecX& f, const std::vector<bool>& passive
   return z;
 }
 
-/// Magnitude a row's violation is compared with: the offsets, the solution and
-/// `length`, the largest violation at the goal (no absolute floor: models of any
-/// size).
-double rowScale(const VecX& b, const VecX& z, double length) {
-  return length + b.cwiseAbs().maxCoeff() + z.cwiseAbs().maxCoeff();
+/// Magnitude a row's violation is compared with: the largest terms of the rows at z
+/// (|a_ij z_j| and |b_i|: lengths, also for a twist's angles times levers) and
+/// `length`, the largest violation at the goal. No absolute floor: models of any size.
+double rowScale(const MatX& a, const VecX& b, const VecX& z, double length) {
+  return length + (a.cwiseAbs() * z.cwiseAbs() + b.cwiseAbs()).maxCoeff();
 }
 
 }  // namespace
@@ -128,7 +128,7 @@ QpResult solveContactQpAllRows(const VecX& goal, const VecX& weights, const MatX
   const VecX z = goal + inv_sqrt_w.cwiseProduct(x);
   // Nearly opposite rows (a wedge) leave r small but not zero: x = -r / r_(n+1) is
   // then huge and violates the rows. Only a solution that keeps them is one.
-  if (!allFinite(z) || ((a * z - b).array() < -kRowTolerance * rowScale(b, z, length)).any())
+  if (!allFinite(z) || ((a * z - b).array() < -kRowTolerance * rowScale(a, b, z, length)).any())
     return out;
   out.z = z;
   // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows and
@@ -145,7 +145,7 @@ namespace {
 void violatedRows(const MatX& a, const VecX& b, const VecX& z, double length,
                   const std::vector<bool>& in_set, std::vector<std::pair<double, int>>& out) {
   out.clear();
-  const double scale = rowScale(b, z, length);
+  const double scale = rowScale(a, b, z, length);
   const VecX slack = a * z - b;
   for (int i = 0; i < static_cast<int>(a.rows()); ++i)
     if (!in_set[i] && slack[i] < -kRowTolerance * scale)

@@ -43,7 +43,13 @@ VecX solvePassive(const MatX& e, const VecX& f, const std::vector<bool>& passive
 /// (|a_ij z_j| and |b_i|: lengths, also for a twist's angles times levers) and
 /// `length`, the largest violation at the goal. No absolute floor: models of any size.
 double rowScale(const MatX& a, const VecX& b, const VecX& z, double length) {
-  return length + (a.cwiseAbs() * z.cwiseAbs() + b.cwiseAbs()).maxCoeff();
+  double largest = 0.0;  // a loop: no temporary vector per call
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    double terms = std::abs(b[i]);
+    for (Eigen::Index j = 0; j < a.cols(); ++j) terms += std::abs(a(i, j) * z[j]);
+    largest = std::max(largest, terms);
+  }
+  return length + largest;
 }
 
 }  // namespace

@@ -37,6 +37,14 @@ struct PieceStats {
   double seconds = 0.0;   ///< wall time of preprocessing
 };
 
+/// Extents a piece may have: the largest side of the box of the vertices its
+/// triangles use lies in [kMinPieceExtent, kMaxPieceExtent] (or is 0: a soup that
+/// is one point). Within it every internal threshold is relative to the models'
+/// size, so results have the same relative accuracy at every scale (docs/api.md,
+/// "Scale"); beyond it products of coordinates under- or overflow.
+inline constexpr double kMinPieceExtent = 1e-9;
+inline constexpr double kMaxPieceExtent = 1e9;
+
 /// Called during preprocessing with a fraction in [0, 1] and the stage's name.
 using ProgressCallback = std::function<void(double fraction, const char* stage)>;
 
@@ -72,10 +80,11 @@ SC_API bool knownKind(ModelKind kind);
 /// Closed polyhedron: every edge shared by exactly two triangles with opposite
 /// winding, no degenerate triangle, one connected shell; inside-out is flipped.
 /// Triangle soup: anything finite with valid indices.
-/// @return the piece; InvalidArgument (unknown kind, non-finite, bad index) or
-///   InvalidGeometry (closed rules) without a piece; or the piece with a File warning
-///   when the cache file could not be written, or passed its checksum but does not
-///   describe this input (then it is rebuilt and rewritten; see docs/api.md).
+/// @return the piece; InvalidArgument (unknown kind, non-finite, bad index, extent
+///   outside [kMinPieceExtent, kMaxPieceExtent]) or InvalidGeometry (closed rules)
+///   without a piece; or the piece with a File warning when the cache file could not
+///   be written, or passed its checksum but does not describe this input (then it is
+///   rebuilt and rewritten; see docs/api.md).
 SC_API Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options = {});
 
 /// The pieces of one object, all of one kind. May be empty (takes part in nothing).

@@ -8,6 +8,11 @@ namespace sc {
 
 /// Default of SceneSettings::tolerance (model units).
 inline constexpr double kDefaultTolerance = 1e-3;
+/// Floor of the tolerance: a pair's tolerance is raised to kMinRelativeTolerance x
+/// sqrt(r (r + d)), r the target's radius and d its centre's distance from the
+/// opponent's origin; below it, rounding of the coordinates tilts contact normals
+/// enough to move the contact configuration by more than the tolerance.
+inline constexpr double kMinRelativeTolerance = 1e-7;
 /// Default of SceneSettings::safety_coefficient; the manual says not to change it.
 inline constexpr double kDefaultSafetyCoefficient = 0.49;
 /// Default of SceneSettings::max_iterations.
@@ -25,7 +30,8 @@ struct SceneSettings {
   /// Pairs whose distance exceeds this report NoResult (model units; +inf = all pairs).
   double max_distance = kInfinity;
   /// Accuracy of the dynamic penetration depth: the contact configuration penetrates
-  /// by at most about this and lies within about this of touching (model units, > 0).
+  /// by at most about this and lies within about this of touching (model units, > 0;
+  /// an absolute length, raised per pair to its floor kMinRelativeTolerance).
   double tolerance = kDefaultTolerance;
   /// Fraction of the tolerance a rotational step of the proxy may move a point (0, 1).
   double safety_coefficient = kDefaultSafetyCoefficient;

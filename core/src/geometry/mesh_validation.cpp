@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -357,6 +358,24 @@ bool verticesBelowFaces(const MeshData& mesh, const std::vector<Vec3>& p, double
   return true;
 }
 
+/// The piece's extent within the supported scales (model.h); 0 is left to the
+/// geometry rules (a closed piece is then degenerate, a soup one point).
+Status checkExtent(const MeshData& mesh) {
+  Aabb box;
+  for (const Tri& f : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) box.extend(mesh.vertices[static_cast<std::size_t>(f[k])]);
+  }
+  const double extent = (box.max - box.min).maxCoeff();
+  if (extent == 0.0 || (extent >= kMinPieceExtent && extent <= kMaxPieceExtent))
+    return Status::success();
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g", extent);
+  return {ErrorCode::InvalidArgument,
+          std::string("the piece's extent ") + text +
+              (extent < kMinPieceExtent ? " is below 1e-9" : " is beyond 1e9") +
+              ", outside the supported scales [1e-9, 1e9]: rescale the model's units"};
+}
+
 }  // namespace
 
 Status validateArrays(const MeshData& mesh) {
@@ -386,7 +405,7 @@ Status validateArrays(const MeshData& mesh) {
       }
     }
   }
-  return Status::success();
+  return checkExtent(mesh);
 }
 
 Status validateClosed(MeshData& mesh, bool& flipped) {

@@ -8,7 +8,8 @@
 
 namespace sc::detail {
 
-/// Finite coordinates, indices in range, counts consistent. InvalidArgument otherwise.
+/// Finite coordinates, indices in range, counts consistent, an extent within
+/// [kMinPieceExtent, kMaxPieceExtent] (or 0). InvalidArgument otherwise.
 Status validateArrays(const MeshData& mesh);
 
 /// For a closed polyhedron piece: every edge shared by exactly two triangles with

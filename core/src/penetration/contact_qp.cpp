@@ -39,6 +39,19 @@ VecX solvePassive(const MatX& e, const VecX& f, const std::vector<bool>& passive
   return z;
 }
 
+/// Magnitude a row's violation is compared with: the largest terms of the rows at z
+/// (|a_ij z_j| and |b_i|: lengths, also for a twist's angles times levers) and
+/// `length`, the largest violation at the goal. No absolute floor: models of any size.
+double rowScale(const MatX& a, const VecX& b, const VecX& z, double length) {
+  double largest = 0.0;  // a loop: no temporary vector per call
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    double terms = std::abs(b[i]);
+    for (Eigen::Index j = 0; j < a.cols(); ++j) terms += std::abs(a(i, j) * z[j]);
+    largest = std::max(largest, terms);
+  }
+  return length + largest;
+}
+
 }  // namespace
 
 VecX nonNegativeLeastSquares(const MatX& e, const VecX& f, int max_iterations) {
@@ -106,23 +119,27 @@ QpResult solveContactQpAllRows(const VecX& goal, const VecX& weights, const MatX
     out.feasible = true;
     return out;
   }
+  // The LDP in units of the largest violation at the goal: its thresholds (NNLS,
+  // infeasibility) are then the same at every model scale.
+  const double length = h.maxCoeff();
   MatX e(n + 1, m);
   e.topRows(n) = g.transpose();
-  e.row(n) = h.transpose();
+  e.row(n) = h.transpose() / length;
   VecX f = VecX::Zero(n + 1);
   f[n] = 1.0;
   const VecX u = nonNegativeLeastSquares(e, f);
   const VecX r = e * u - f;
   if (r.norm() < 1e-12 || std::abs(r[n]) < 1e-300) return out;  // infeasible
-  const VecX x = -r.head(n) / r[n];
+  const VecX x = -(length / r[n]) * r.head(n);
   const VecX z = goal + inv_sqrt_w.cwiseProduct(x);
   // Nearly opposite rows (a wedge) leave r small but not zero: x = -r / r_(n+1) is
   // then huge and violates the rows. Only a solution that keeps them is one.
-  const double scale = 1.0 + b.cwiseAbs().maxCoeff() + z.cwiseAbs().maxCoeff();
-  if (!allFinite(z) || ((a * z - b).array() < -kRowTolerance * scale).any()) return out;
+  if (!allFinite(z) || ((a * z - b).array() < -kRowTolerance * rowScale(a, b, z, length)).any())
+    return out;
   out.z = z;
-  // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows.
-  out.lambda = u / std::abs(r[n]);
+  // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows and
+  // to model units (x = G^T lambda, and x is `length` times the scaled solution).
+  out.lambda = (length / std::abs(r[n])) * u;
   out.feasible = true;
   return out;
 }
@@ -131,10 +148,10 @@ namespace {
 
 /// Rows violated at `z` beyond the acceptance tolerance, with their violation scaled
 /// by the row's norm (most negative = most violated), skipping those in `in_set`.
-void violatedRows(const MatX& a, const VecX& b, const VecX& z, const std::vector<bool>& in_set,
-                  std::vector<std::pair<double, int>>& out) {
+void violatedRows(const MatX& a, const VecX& b, const VecX& z, double length,
+                  const std::vector<bool>& in_set, std::vector<std::pair<double, int>>& out) {
   out.clear();
-  const double scale = 1.0 + b.cwiseAbs().maxCoeff() + z.cwiseAbs().maxCoeff();
+  const double scale = rowScale(a, b, z, length);
   const VecX slack = a * z - b;
   for (int i = 0; i < static_cast<int>(a.rows()); ++i)
     if (!in_set[i] && slack[i] < -kRowTolerance * scale)
@@ -158,7 +175,8 @@ QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, co
   std::vector<bool> in_set(static_cast<std::size_t>(m), false);
   std::vector<int> rows;
   std::vector<std::pair<double, int>> violated;
-  violatedRows(a, b, goal, in_set, violated);
+  const double length = std::max(0.0, (b - a * goal).maxCoeff());
+  violatedRows(a, b, goal, length, in_set, violated);
   while (!violated.empty()) {
     // The most violated first, the set at least doubling: few rounds on thousands of rows.
     const std::size_t add = std::min<std::size_t>(
@@ -187,7 +205,7 @@ QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, co
     out.lambda.setZero();
     for (Eigen::Index k = 0; k < count; ++k)
       out.lambda[rows[static_cast<std::size_t>(k)]] = sub.lambda[k];
-    violatedRows(a, b, out.z, in_set, violated);
+    violatedRows(a, b, out.z, length, in_set, violated);
   }
   return out;
 }

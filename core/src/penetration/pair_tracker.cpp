@@ -35,7 +35,7 @@ Feature featureAt(const Leaf& leaf, const Rigid& frame_from_group, const Vec3& p
                   const int* simplex, int count) {
   const Rigid frame_from_leaf = frame_from_group * leaf.group_from_leaf;
   const Vec3 local = frame_from_leaf.inverse() * point;
-  const double tol = 1e-9 * (1.0 + leaf.poly->radius + leaf.poly->center.norm());
+  const double tol = 1e-9 * (leaf.poly->radius + leaf.poly->center.norm());  // as featureTolerance
   return closestFeature(*leaf.poly, local, simplex, count, tol);
 }
 
@@ -66,8 +66,21 @@ void toWorld(const ProxyOutcome& o, const GroupView& target, const GroupView& op
   r.contact_orientation = Quat(world_from_contact.rotation).normalized();
 }
 
+/// The settings with the tolerance raised to its floor for this pair (settings.h).
+/// A contact normal read from closest points a tolerance t apart is tilted by about
+/// (rounding of the coordinates, ~1e-15 L) / t, which moves the contact pose by that
+/// times the depth (~ the target's radius r): within t when t >= ~4e-8 sqrt(r L).
+SceneSettings effectiveSettings(const SceneSettings& settings, const GroupPairQuery& query,
+                                const Vec3& goal_center) {
+  SceneSettings s = settings;
+  const double r = query.targetSize();
+  const double floor = kMinRelativeTolerance * std::sqrt(r * (r + goal_center.norm()));
+  s.tolerance = std::max(settings.tolerance, floor);
+  return s;
+}
+
 void runDirection(PairState& state, int dir, const GroupView& target, const GroupView& opponent,
-                  const SceneSettings& settings, DirectedResult& out) {
+                  const SceneSettings& requested, DirectedResult& out) {
   GroupPairQuery& query = state.query[dir];
   query.bind(target, opponent);
   const Rigid goal =
@@ -75,6 +88,7 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   ProxyOutcome outcome;
   ProxyTracker& tracker = state.tracker[dir];
   const Vec3& center = target.placement.local_center;
+  const SceneSettings settings = effectiveSettings(requested, query, goal * center);
   tracker.update(query, goal, center, settings, outcome);
   Rigid free_pose;
   if (outcome.code == ErrorCode::InvalidInitialTransformation &&

@@ -45,6 +45,7 @@ void ProxyTracker::buildRows(GroupPairQuery& query, const Rigid& pose) {
 int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
                         const Vec3& center, const SceneSettings& settings, bool* feasible) {
   const double skin = skinOf(settings);
+  const double size = query.targetSize();  // step thresholds are relative to it
   Vec3 y = proxy_ * center;
   *feasible = true;
   int k = 0;
@@ -70,7 +71,7 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
     }
     const Vec3 target = qp.z;
     const Vec3 delta = target - y;
-    if (delta.norm() <= 1e-12 * (1.0 + y.norm())) break;
+    if (delta.norm() <= 1e-12 * (size + y.norm())) break;
     skip_.clear();
     for (const LeafContact& c : contacts_) skip_.push_back({c.t_leaf, c.o_leaf});
     std::sort(skip_.begin(), skip_.end());
@@ -145,9 +146,9 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   // reached a free pose. The slide writes its pose as a centre and a rotation, which
   // rounds: within that rounding the proxy is at the goal (else NONE would freeze its
   // orientation at a free goal).
-  const bool reached =
-      feasible && rotation == goal.rotation &&
-      (proxy_ * center - goal_center).norm() <= 1e-12 * (1.0 + goal_center.norm() + center.norm());
+  const bool reached = feasible && rotation == goal.rotation &&
+                       (proxy_ * center - goal_center).norm() <=
+                           1e-12 * (query.targetSize() + goal_center.norm() + center.norm());
   if (reached) proxy_ = goal;
   if (!reached && mode == RotationMode::None && !penetrating_) {
     // Penetration began in this update: None keeps the orientation at the impact.

@@ -64,7 +64,7 @@ int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec
     Vec6 z = qp.z;
     const double turn = z.tail<3>().norm() * rho;
     if (m > 0 && turn > cap) z *= cap / turn;  // a shorter step; advancement keeps it safe
-    if (z.head<3>().norm() + z.tail<3>().norm() * rho <= 1e-12 * (1.0 + rho + y.norm())) break;
+    if (z.head<3>().norm() + z.tail<3>().norm() * rho <= 1e-12 * (rho + y.norm())) break;
     TwistMotion motion;
     motion.start = proxy;
     motion.center = center;

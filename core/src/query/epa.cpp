@@ -65,7 +65,7 @@ EpaResult penetrationDepth(const ConvexPolytope& a, const Rigid& frame_from_a,
       for (int sz = -1; sz <= 1; sz += 2) diff.add(Vec3(sx, sy, sz).normalized(), set);
   double scale = 0.0;
   for (const Vec3& w : set.w) scale = std::max(scale, w.norm());
-  const double eps = 1e-12 * (1.0 + scale);
+  const double eps = 1e-12 * scale;  // relative: the pieces' scale is theirs
   for (int it = 0; it < max_iterations; ++it) {
     out.iterations = it + 1;
     const auto hull = convexHull(set.w);

@@ -30,9 +30,10 @@ constexpr int kMaxAdvanceSteps = 64;
 /// The remembered distance is trusted to this relative accuracy (GJK's is ~1e-12).
 constexpr double kKnownGapMargin = 1e-9;
 
-/// Feature tolerance of a polytope, as the pair tracker reports features.
+/// Feature tolerance of a polytope, as the pair tracker reports features: relative
+/// to its size and position, with no absolute floor, so it holds at every scale.
 double featureTolerance(const ConvexPolytope& poly) {
-  return 1e-9 * (1.0 + poly.radius + poly.center.norm());
+  return 1e-9 * (poly.radius + poly.center.norm());
 }
 
 bool realFaceHolds(const ConvexPolytope& poly, int f, const Vec3& local, double tolerance) {

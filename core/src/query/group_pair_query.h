@@ -77,6 +77,9 @@ class GroupPairQuery {
   void bind(const GroupView& target, const GroupView& opponent);
 
   int targetLeafCount() const { return t_leaf_count_; }
+  /// Radius of a sphere holding the target group: the length its relative
+  /// thresholds scale with (set by bind(), so no query pays for it).
+  double targetSize() const { return t_radius_; }
   int opponentLeafCount() const { return o_leaf_count_; }
   Leaf targetLeaf(int t_leaf) const { return leafOf(t_slots_, t_leaf); }
   Leaf opponentLeaf(int o_leaf) const { return leafOf(o_slots_, o_leaf); }

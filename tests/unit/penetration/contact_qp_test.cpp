@@ -99,5 +99,47 @@ TEST(ContactQp, FeasibleGoalIsItsOwnAnswer) {
   EXPECT_EQ(r.lambda.cwiseAbs().maxCoeff(), 0.0);
 }
 
+/// The problem with every length multiplied by s: translations, offsets and levers
+/// (the rotational columns of a twist row), rotation weights by s^2; angles are kept.
+Problem scaledProblem(const Problem& p, double s) {
+  Problem q = p;
+  const int n = static_cast<int>(p.goal.size());
+  q.b *= s;
+  q.goal.head(3) *= s;
+  if (n == 6) {
+    q.a.rightCols(3) *= s;
+    q.weights.tail(3) *= s * s;
+  }
+  return q;
+}
+
+TEST(ContactQp, SolutionScalesWithTheProblem) {
+  // docs/api.md, "Scale": the same contact at any model scale has the same answer in
+  // units of the scale, on both paths (all rows; the working set beyond 24 rows).
+  std::mt19937 rng(5);
+  int compared = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    const int n = trial % 2 == 0 ? 3 : 6;
+    const int m = trial % 4 < 2 ? 8 : 60;
+    const Problem p = contactLike(rng, n, m, m / 2, 0.05, 0.05);
+    const QpResult ref = solveContactQp(p.goal, p.weights, p.a, p.b);
+    for (int k = -9; k <= 9; ++k) {
+      const double s = std::pow(10.0, k);
+      const Problem q = scaledProblem(p, s);
+      const QpResult r = solveContactQp(q.goal, q.weights, q.a, q.b);
+      ASSERT_EQ(r.feasible, ref.feasible) << "trial " << trial << ", scale " << s;
+      if (!ref.feasible) continue;
+      ++compared;
+      VecX z = r.z;
+      z.head(3) /= s;
+      EXPECT_LT((z - ref.z).norm(), 1e-9 * (1.0 + ref.z.norm()))
+          << "trial " << trial << ", scale " << s;
+      EXPECT_LT((r.lambda / s - ref.lambda).norm(), 1e-7 * (1.0 + ref.lambda.norm()))
+          << "trial " << trial << ", scale " << s;
+    }
+  }
+  EXPECT_GT(compared, 19 * 16);
+}
+
 }  // namespace
 }  // namespace sc::detail

@@ -12,6 +12,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <tuple>
@@ -33,10 +35,13 @@ constexpr double kSeconds = SC_TEST_SANITIZED ? 2.0 : 10.0;
 constexpr double kImpactSeconds = SC_TEST_SANITIZED ? 1.0 : 3.0;
 constexpr double kSettledSeconds = 1.0;  // the pile at rest: the last second
 
+constexpr int kBowlRings = 16, kBowlSegments = 48;
+
 struct Pile {
   std::vector<btRigidBody*> bodies;
   std::vector<Vec3> vertices;  ///< the torus mesh's vertices, in its mesh frame
   btTransform mesh_from_shape;
+  std::shared_ptr<const samples::BowlInnerDepth> bowl_depth;
 };
 
 /// World pose of a body's mesh frame.
@@ -52,10 +57,10 @@ double torusDepth(const btTransform& pose, const btVector3& p) {
   return kMinor - std::hypot(ring, double(q.y()));
 }
 
-/// Depth of `p` in the bowl's shell (rim at y = 0, centre at the origin).
-double bowlDepth(const btVector3& p) {
-  if (double(p.y()) > 0.0) return 0.0;
-  return std::max(0.0, double(p.length()) - kBowlInner);
+/// Depth of `p` in the bowl's shell (rim at y = 0, centre at the origin), on the
+/// mesh's facets: they lie up to 4 mm inside the sphere of radius kBowlInner.
+double bowlDepth(const Pile& pile, const btVector3& p) {
+  return std::max(0.0, (*pile.bowl_depth)(Vec3(double(p.x()), double(p.y()), double(p.z()))));
 }
 
 struct Overlaps {
@@ -73,7 +78,7 @@ Overlaps measure(const Pile& pile) {
     o.escaped = o.escaped || (double(c.y()) < 0.0 && double(c.length()) > kBowlInner);
     for (const Vec3& v : pile.vertices) {
       const btVector3 p = poses[i] * btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
-      o.bowl = std::max(o.bowl, bowlDepth(p));
+      o.bowl = std::max(o.bowl, bowlDepth(pile, p));
       for (std::size_t j = 0; j < poses.size(); ++j) {
         if (j == i ||
             (poses[j].getOrigin() - poses[i].getOrigin()).length() > 2 * (kMajor + kMinor))
@@ -93,8 +98,8 @@ double energy(const BulletWorld& w, const Pile& pile) {
 }
 
 Pile dropPile(BulletWorld& w) {
-  auto bowl = bullet::ScBulletShape::create(ModelKind::ClosedPolyhedron,
-                                            bowlMesh(kBowlInner, kBowlOuter, 16, 48));
+  const MeshData bowl_mesh = bowlMesh(kBowlInner, kBowlOuter, kBowlRings, kBowlSegments);
+  auto bowl = bullet::ScBulletShape::create(ModelKind::ClosedPolyhedron, bowl_mesh);
   const MeshData torus = torusMesh(kMajor, kMinor, 32, 12);
   auto shape = bullet::ScBulletShape::create(ModelKind::ClosedPolyhedron, torus);
   EXPECT_TRUE(bowl.ok() && shape.ok());
@@ -106,6 +111,8 @@ Pile dropPile(BulletWorld& w) {
   w.addBody(bowl.value(), 0.0, bowl_frame.getOrigin(), bowl_frame.getRotation());
   pile.vertices = torus.vertices;
   pile.mesh_from_shape = shape.value()->meshFromShape();
+  pile.bowl_depth = std::make_shared<samples::BowlInnerDepth>(bowl_mesh, kBowlInner, kBowlOuter,
+                                                              kBowlRings, kBowlSegments);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
   for (int i = 0; i < kBodies; ++i) {
@@ -224,6 +231,121 @@ TEST_P(PileImpacts, OverlapsStayWithinTenMillimetres) {
   EXPECT_LE(r.worst.bowl, 0.010);
   EXPECT_LE(r.worst.bodies, 0.010);
 }
+
+/// The smooth torus's surface, sampled (mesh frame): the geometry the overlaps of the
+/// manifold check are measured on.
+std::vector<btVector3> torusSamples() {
+  std::vector<btVector3> out;
+  constexpr int kAround = 256, kTube = 64;  // 6 mm apart: a cap between them is missed by < 0.2 mm
+  for (int i = 0; i < kAround; ++i)
+    for (int j = 0; j < kTube; ++j) {
+      const double u = 6.283185307179586 * i / kAround, v = 6.283185307179586 * j / kTube;
+      const double r = kMajor + kMinor * std::cos(v);
+      out.emplace_back(btScalar(r * std::cos(u)), btScalar(kMinor * std::sin(v)),
+                       btScalar(r * std::sin(u)));
+    }
+  return out;
+}
+
+/// Real overlap of body `a` with body `b` (null: the bowl), both ways: the deepest
+/// sample of one surface inside the other solid.
+double realOverlap(const Pile& pile, const std::vector<btVector3>& samples, const btRigidBody* a,
+                   const btRigidBody* b) {
+  const btTransform pa = meshPose(pile, *a);
+  double depth = 0.0;
+  if (b == nullptr) {
+    for (const btVector3& s : samples) depth = std::max(depth, bowlDepth(pile, pa * s));
+    return depth;
+  }
+  const btTransform pb = meshPose(pile, *b);
+  for (const btVector3& s : samples)
+    depth = std::max({depth, torusDepth(pb, pa * s), torusDepth(pa, pb * s)});
+  return depth;
+}
+
+/// Largest amount by which a manifold point is deeper than its bodies' real overlap.
+double manifoldExcess(const BulletWorld& w, const Pile& pile,
+                      const std::vector<btVector3>& samples) {
+  auto dynamic = [&](const btCollisionObject* o) -> const btRigidBody* {
+    for (const btRigidBody* b : pile.bodies)
+      if (b == o) return b;
+    return nullptr;
+  };
+  double excess = -1e30;
+  for (int m = 0; m < w.dispatcher->getNumManifolds(); ++m) {
+    const btPersistentManifold* pm = w.dispatcher->getManifoldByIndexInternal(m);
+    // Each point's depth at the current poses, as Bullet refreshes it from the points
+    // held on either body (an impact's projection moved the bodies since detection).
+    const btTransform& ta = pm->getBody0()->getWorldTransform();
+    const btTransform& tb = pm->getBody1()->getWorldTransform();
+    double deepest = 0.0;
+    for (int k = 0; k < pm->getNumContacts(); ++k) {
+      const btManifoldPoint& c = pm->getContactPoint(k);
+      const btScalar d = (ta(c.m_localPointA) - tb(c.m_localPointB)).dot(c.m_normalWorldOnB);
+      deepest = std::max(deepest, -double(d));
+    }
+    if (!(deepest > 0.0)) continue;
+    const btRigidBody* a = dynamic(pm->getBody0());
+    const btRigidBody* b = dynamic(pm->getBody1());
+    if (a == nullptr) std::swap(a, b);
+    if (a == nullptr) continue;
+    excess = std::max(excess, deepest - realOverlap(pile, samples, a, b));
+  }
+  return excess;
+}
+
+// Manifold model: every contact point of every step is checked against the geometry,
+// never deeper than the bodies' real overlap plus the tolerance (the mesh is inscribed
+// in the smooth torus and the bowl: their facets add at most 1.4 mm).
+class PileManifold : public ::testing::TestWithParam<double> {};
+
+/// The plugin's world with a hook after each detection (its impact projections
+/// applied), before the solver: where the manifold's points are what the solver gets.
+class CheckedWorld : public bullet::ScDynamicsWorld {
+ public:
+  using ScDynamicsWorld::ScDynamicsWorld;
+  std::function<void()> after_detection;
+  void performDiscreteCollisionDetection() override {
+    ScDynamicsWorld::performDiscreteCollisionDetection();
+    if (after_detection) after_detection();
+  }
+};
+
+TEST_P(PileManifold, PointsNoDeeperThanTheRealOverlap) {
+  const double hz = GetParam();
+  BulletWorld w(bullet::ContactModel::Manifold, -9.81, hz);
+  w.world.reset();  // detached before the checked world attaches
+  auto checked = std::make_unique<CheckedWorld>(w.dispatcher.get(), w.broadphase.get(),
+                                                w.solver.get(), w.config.get(), w.plugin);
+  checked->setGravity(btVector3(0, -9.81f, 0));
+  CheckedWorld* world = checked.get();
+  w.world = std::move(checked);
+  const Pile pile = dropPile(w);
+  const std::vector<btVector3> samples = torusSamples();
+  const double tolerance = w.plugin->settings().query.tolerance;
+  const int steps = static_cast<int>(std::lround(kImpactSeconds * hz));
+  double worst = -1e30;
+  int worst_step = -1, step = 0;
+  world->after_detection = [&] {
+    const double e = manifoldExcess(w, pile, samples);
+    if (e > worst) worst = e, worst_step = step;
+  };
+  for (step = 0; step < steps; ++step) w.step();
+  std::printf("[pile manifold %.0f Hz] deepest point beyond the real overlap: %.2f mm (step %d)\n",
+              hz, 1e3 * worst, worst_step);
+  EXPECT_LE(worst, tolerance + 0.0014);
+}
+
+std::string rateName(const ::testing::TestParamInfo<double>& p) {
+  return std::to_string(static_cast<int>(p.param)) + "Hz";
+}
+
+INSTANTIATE_TEST_SUITE_P(Rates, PileManifold, ::testing::Values(240.0), rateName);
+
+// Not yet (issue 16 open): at 60 Hz a torus-torus point of a fresh impact is 3.9 mm
+// deeper than the real overlap (8.3 mm against 4.4 mm), 1.5 mm beyond the bound: each
+// direction shifts its rows by its own body's projection only.
+INSTANTIATE_TEST_SUITE_P(DISABLED_Rates, PileManifold, ::testing::Values(60.0), rateName);
 
 std::string pileName(const ::testing::TestParamInfo<PileParam>& p) { return label(p.param); }
 

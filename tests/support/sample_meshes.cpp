@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "support/sample_meshes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -82,6 +83,56 @@ MeshData torusMesh(double major, double minor, int around, int tube) {
     }
   }
   return m;
+}
+
+BowlInnerDepth::BowlInnerDepth(const MeshData& bowl, double inner, double outer, int rings,
+                               int segments)
+    : cells_(static_cast<std::size_t>(rings * segments)),
+      inner_(inner),
+      outer_(outer),
+      rings_(rings),
+      segments_(segments) {
+  for (const Tri& t : bowl.triangles) {
+    const Vec3& a = bowl.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& b = bowl.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& c = bowl.vertices[static_cast<std::size_t>(t[2])];
+    const double tol = 1e-9 * inner;
+    if (std::abs(a.norm() - inner) > tol || std::abs(b.norm() - inner) > tol ||
+        std::abs(c.norm() - inner) > tol)
+      continue;  // the outer surface or the rim
+    const Vec3 centroid = (a + b + c) / 3.0;
+    Vec3 n = (b - a).cross(c - a).normalized();
+    if (n.dot(centroid) < 0) n = -n;
+    int ring = 0, segment = 0;
+    cells_[static_cast<std::size_t>(cellOf(centroid, ring, segment))].push_back({n, n.dot(a)});
+  }
+}
+
+int BowlInnerDepth::cellOf(const Vec3& direction, int& ring, int& segment) const {
+  const double phi = std::acos(std::clamp(-direction.y() / direction.norm(), -1.0, 1.0));
+  double theta = std::atan2(direction.z(), direction.x());
+  if (theta < 0) theta += 2 * kPi;
+  ring = std::clamp(static_cast<int>(phi / (0.5 * kPi / rings_)), 0, rings_ - 1);
+  segment = std::clamp(static_cast<int>(theta / (2 * kPi / segments_)), 0, segments_ - 1);
+  return ring * segments_ + segment;
+}
+
+double BowlInnerDepth::operator()(const Vec3& p) const {
+  if (p.y() > 0.0 || !(p.norm() > 0.0)) return 0.0;
+  // Deep in the shell or beyond it: the sphere is as good as the facets.
+  if (p.norm() > 0.5 * (inner_ + outer_)) return p.norm() - inner_;
+  int ring = 0, segment = 0;
+  cellOf(p, ring, segment);
+  // Near the pole every segment's first triangles meet: look at all of them there.
+  const bool pole = ring <= 1;
+  double depth = -1e300;
+  for (int k = std::max(0, ring - 1); k <= std::min(rings_ - 1, ring + 1); ++k)
+    for (int dj = pole ? 0 : -1; dj <= (pole ? segments_ - 1 : 1); ++dj) {
+      const int j = pole ? dj : (segment + dj + segments_) % segments_;
+      for (const Plane& f : cells_[static_cast<std::size_t>(k * segments_ + j)])
+        depth = std::max(depth, f.normal.dot(p) - f.offset);
+    }
+  return depth;
 }
 
 }  // namespace sc::samples

@@ -139,8 +139,8 @@ std::vector<Plane> outerPlanes(const ConvexPolytope& poly) {
 
 class Decomposer {
  public:
-  Decomposer(const MeshData& mesh, const ProgressCallback& progress)
-      : mesh_(mesh), progress_(progress) {}
+  Decomposer(const MeshData& mesh, const ProgressCallback& progress, const CancelCallback& cancel)
+      : mesh_(mesh), progress_(progress), cancel_(cancel) {}
 
   Result<Decomposition> run();
 
@@ -173,6 +173,7 @@ class Decomposer {
 
   const MeshData& mesh_;
   const ProgressCallback& progress_;
+  const CancelCallback& cancel_;
   double tol_ = 0.0;
   TriangleAdjacency adjacency_;
   std::vector<Vec3> normals_;
@@ -654,6 +655,7 @@ Result<Decomposition> Decomposer::run() {
   if (!tryWholeSurface()) {
     for (int seed = nextSeed(); seed >= 0; seed = nextSeed()) {
       if (Status s = growPatch(seed, HullCheck::Quick); !s.ok()) return s;
+      if (cancel_ && cancel_()) return Status(ErrorCode::InvalidOperation, "build cancelled");
     }
   }
   return std::move(result_);
@@ -661,9 +663,9 @@ Result<Decomposition> Decomposer::run() {
 
 }  // namespace
 
-Result<Decomposition> decomposeConvexSurface(const MeshData& mesh,
-                                             const ProgressCallback& progress) {
-  return Decomposer(mesh, progress).run();
+Result<Decomposition> decomposeConvexSurface(const MeshData& mesh, const ProgressCallback& progress,
+                                             const CancelCallback& cancel) {
+  return Decomposer(mesh, progress, cancel).run();
 }
 
 }  // namespace sc::detail

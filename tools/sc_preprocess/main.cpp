@@ -7,12 +7,16 @@
 //
 // All meshes of the file are merged into one piece (node transforms applied,
 // coincident positions welded). Exit codes: 0 ok, 1 bad input or geometry (or the
-// cache could not be written), 2 usage. A malformed file is one line on stderr naming
+// cache could not be written), 2 usage, 130 interrupted (Ctrl-C cancels the build and
+// writes no cache). Progress goes to stderr: a bar with the time left on a terminal,
+// plain lines otherwise. A malformed file is one line on stderr naming
 // the file and the problem. Uses the public API only.
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -26,6 +30,7 @@ namespace {
 constexpr int kExitOk = 0;
 constexpr int kExitBadInput = 1;
 constexpr int kExitUsage = 2;
+constexpr int kExitInterrupted = 130;  // the shell's code for SIGINT
 
 struct Options {
   std::string mesh;
@@ -73,27 +78,62 @@ bool parseArguments(int argc, char** argv, Options& options) {
   return true;
 }
 
-/// A progress bar on a terminal, redrawn at most every whole percent.
-class ProgressBar {
+using Clock = std::chrono::steady_clock;
+
+/// Set by SIGINT: the build is cancelled between patches, so no cache is half-written.
+volatile std::sig_atomic_t interrupted = 0;
+
+void onInterrupt(int) { interrupted = 1; }
+
+/// "about 12 s left" from the rate so far; empty while too early to tell.
+std::string timeLeft(double fraction, double elapsed) {
+  if (fraction < 0.02 || fraction >= 1.0 || elapsed < 0.5) return "";
+  const double left = elapsed * (1.0 - fraction) / fraction;
+  char text[48];
+  if (left < 90.0) {
+    std::snprintf(text, sizeof text, "about %.0f s left", std::ceil(left));
+  } else {
+    std::snprintf(text, sizeof text, "about %.0f min left", std::ceil(left / 60.0));
+  }
+  return text;
+}
+
+/// Progress on stderr, so stdout keeps only the statistics. On a terminal: a bar
+/// with the time left, redrawn at most every whole percent. Otherwise (a log): one
+/// plain line per stage and per tenth.
+class ProgressDisplay {
  public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled) {}
+  explicit ProgressDisplay(bool terminal) : terminal_(terminal), start_(Clock::now()) {}
+
   void operator()(double fraction, const char* stage) {
     const int percent = static_cast<int>(100.0 * fraction);
-    if (!enabled_ || percent == shown_) return;
+    const bool new_stage = stage_ != stage;
+    const int step = terminal_ ? 1 : 10;
+    if (!new_stage && percent / step == shown_ / step) return;
     shown_ = percent;
-    constexpr int kWidth = 40;
-    const int filled = percent * kWidth / 100;
-    std::printf("\r[%s%s] %3d%% %-12s", std::string(filled, '#').c_str(),
-                std::string(kWidth - filled, ' ').c_str(), percent, stage);
-    std::fflush(stdout);
+    stage_ = stage;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const std::string left = timeLeft(fraction, elapsed);
+    if (terminal_) {
+      constexpr int kWidth = 40;
+      const int filled = percent * kWidth / 100;
+      std::fprintf(stderr, "\r[%s%s] %3d%% %-18s %-20s", std::string(filled, '#').c_str(),
+                   std::string(kWidth - filled, ' ').c_str(), percent, stage, left.c_str());
+    } else {
+      std::fprintf(stderr, "sc-preprocess: %3d%% %s, %.1f s%s%s\n", percent, stage, elapsed,
+                   left.empty() ? "" : ", ", left.c_str());
+    }
+    std::fflush(stderr);
   }
   void finish() {
-    if (enabled_ && shown_ >= 0) std::printf("\n");
+    if (terminal_ && shown_ >= 0) std::fprintf(stderr, "\n");
   }
 
  private:
-  bool enabled_;
+  bool terminal_;
+  Clock::time_point start_;
   int shown_ = -1;
+  std::string stage_;
 };
 
 }  // namespace
@@ -122,15 +162,22 @@ int main(int argc, char** argv) {
   const double read_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  ProgressBar bar(::isatty(STDOUT_FILENO) == 1);
+  ProgressDisplay bar(::isatty(STDERR_FILENO) == 1);
   sc::BuildOptions build;
   build.cache_file = options.cache;
   build.progress = [&bar](double fraction, const char* stage) { bar(fraction, stage); };
+  build.cancel = [] { return interrupted != 0; };
+  std::signal(SIGINT, onInterrupt);
   const sc::ModelKind kind =
       options.soup ? sc::ModelKind::TriangleSoup : sc::ModelKind::ClosedPolyhedron;
   const sc::Result<sc::PiecePtr> piece =
       sc::buildPiece(kind, std::move(imported.value().mesh), build);
   bar.finish();
+  std::signal(SIGINT, SIG_DFL);
+  if (!piece.hasValue() && interrupted != 0) {
+    std::fprintf(stderr, "sc-preprocess: interrupted, no cache written\n");
+    return kExitInterrupted;
+  }
   if (!piece.hasValue()) {
     std::fprintf(stderr, "sc-preprocess: '%s': %s: %s\n", options.mesh.c_str(),
                  sc::describe(piece.status().code()), piece.status().message().c_str());

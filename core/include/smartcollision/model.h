@@ -48,9 +48,16 @@ inline constexpr double kMaxPieceExtent = 1e9;
 /// Called during preprocessing with a fraction in [0, 1] and the stage's name.
 using ProgressCallback = std::function<void(double fraction, const char* stage)>;
 
+/// Asked between steps of a build (between patches while decomposing); returning
+/// true cancels it. Usually reads a flag the progress callback or another thread sets.
+using CancelCallback = std::function<bool()>;
+
 struct BuildOptions {
   std::string cache_file;     ///< empty: no cache; else load if valid, else build and write
   ProgressCallback progress;  ///< optional
+  /// Optional. A cancelled build returns InvalidOperation without a piece and writes
+  /// no cache file (an existing one is left as it was).
+  CancelCallback cancel;
 };
 
 class SC_API Piece {

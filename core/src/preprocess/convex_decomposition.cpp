@@ -79,10 +79,68 @@ struct FaceChunk {
   }
 };
 
+/// Normals of the outer planes: the 3 axes, 6 face and 4 body diagonals of a cube.
+const std::array<Vec3, 13>& outerDirections() {
+  static const std::array<Vec3, 13> directions = [] {
+    std::array<Vec3, 13> d = {Vec3(1, 0, 0),  Vec3(0, 1, 0), Vec3(0, 0, 1),  Vec3(1, 1, 0),
+                              Vec3(1, -1, 0), Vec3(1, 0, 1), Vec3(1, 0, -1), Vec3(0, 1, 1),
+                              Vec3(0, 1, -1), Vec3(1, 1, 1), Vec3(1, 1, -1), Vec3(1, -1, 1),
+                              Vec3(-1, 1, 1)};
+    for (Vec3& v : d) v.normalize();
+    return d;
+  }();
+  return directions;
+}
+
+/// Planes of the largest faces kept among the outer planes.
+constexpr int kOuterFaces = 8;
+/// Face normals closer than this cosine count as one direction.
+constexpr double kSameDirection = 0.999;
+/// Hulls with at most this many planes prune the tree with their own.
+constexpr std::size_t kOwnPlanesUpTo = 64;
+
+/// A few planes that contain the hull of `poly`'s vertices: both ways along each
+/// outer direction and along the normals of its largest faces, each through the
+/// vertices' support. Pruning the tree with them costs O(1) planes per node where
+/// the hull's own planes cost O(hull size), which made each condition (2) check
+/// quadratic in the patch. They contain the hull, so the hull shrunk by the
+/// tolerance lies in them shrunk by it: no triangle reaching it is pruned.
+std::vector<Plane> outerPlanes(const ConvexPolytope& poly) {
+  auto support = [&](const Vec3& n) {
+    double best = -kInfinity;
+    for (const Vec3& v : poly.vertices) best = std::max(best, n.dot(v));
+    return best;
+  };
+  std::vector<Plane> planes;
+  for (const Vec3& d : outerDirections()) {
+    planes.push_back({d, support(d)});
+    planes.push_back({-d, support(-d)});
+  }
+  std::vector<std::pair<double, Vec3>> faces;
+  for (const Tri& f : poly.faces) {
+    const Vec3 twice = (poly.vertices[f[1]] - poly.vertices[f[0]])
+                           .cross(poly.vertices[f[2]] - poly.vertices[f[0]]);
+    if (twice.norm() > 0.0) faces.emplace_back(twice.norm(), twice.normalized());
+  }
+  // Largest first, one per direction: a flat cap is many faces of one plane.
+  std::sort(faces.begin(), faces.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<Vec3> kept;
+  for (const auto& [area, n] : faces) {
+    if (static_cast<int>(kept.size()) == kOuterFaces) break;
+    const bool repeated = std::any_of(kept.begin(), kept.end(),
+                                      [&](const Vec3& m) { return m.dot(n) > kSameDirection; });
+    if (repeated) continue;
+    kept.push_back(n);
+    planes.push_back({n, support(n)});
+  }
+  return planes;
+}
+
 class Decomposer {
  public:
-  Decomposer(const MeshData& mesh, const ProgressCallback& progress)
-      : mesh_(mesh), progress_(progress) {}
+  Decomposer(const MeshData& mesh, const ProgressCallback& progress, const CancelCallback& cancel)
+      : mesh_(mesh), progress_(progress), cancel_(cancel) {}
 
   Result<Decomposition> run();
 
@@ -102,7 +160,7 @@ class Decomposer {
   /// Condition (2) on the first `count` faces: the polytope when it holds.
   Result<PatchPolytope> evaluate(int count, HullCheck mode);
   bool reachesInside(const PatchRef& patch, std::vector<Plane> planes, const Aabb& bounds,
-                     int also_skip = -1);
+                     int also_skip = -1, std::vector<Plane> outer = {});
   void setVerified(const ConvexPolytope& hull);
   bool swallows(int t);
   void finishPatch(PatchPolytope patch);
@@ -115,6 +173,7 @@ class Decomposer {
 
   const MeshData& mesh_;
   const ProgressCallback& progress_;
+  const CancelCallback& cancel_;
   double tol_ = 0.0;
   TriangleAdjacency adjacency_;
   std::vector<Vec3> normals_;
@@ -323,10 +382,14 @@ void Decomposer::rebuildFrontier() {
 }
 
 // Other triangles that reach the polytope given by `planes`, shrunk by the
-// tolerance; `bounds` encloses it.
+// tolerance; `bounds` encloses it. Non-empty `outer` planes contain it and prune
+// the tree in its place.
 bool Decomposer::reachesInside(const PatchRef& patch, std::vector<Plane> planes, const Aabb& bounds,
-                               int also_skip) {
+                               int also_skip, std::vector<Plane> outer) {
   HalfspacePolytope region(std::move(planes), tol_);
+  const bool pruned = !outer.empty();
+  HalfspacePolytope prune(std::move(outer), tol_);
+  HalfspacePolytope& filter = pruned ? prune : region;
   bool reached = false;
   tree_.query(
       [&](const Aabb& box) {
@@ -334,10 +397,11 @@ bool Decomposer::reachesInside(const PatchRef& patch, std::vector<Plane> planes,
             (box.max.array() < bounds.min.array()).any()) {
           return false;
         }
-        return region.boxMayReachInterior(box);
+        return filter.boxMayReachInterior(box);
       },
       [&](int t) {
         if (patch.contains(t) || t == also_skip) return true;
+        if (pruned && !prune.boxMayReachInterior(tree_.box(t))) return true;
         const Tri& f = mesh_.triangles[t];
         if (!region.triangleReachesInterior(mesh_.vertices[f[0]], mesh_.vertices[f[1]],
                                             mesh_.vertices[f[2]])) {
@@ -354,7 +418,10 @@ Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
   Result<PatchPolytope> built = buildPatchPolytope(mesh_, adjacency_, patch, tol_, mode);
   if (!built.ok() || count == 1) return built;  // one triangle is the surface itself
   const PatchPolytope& poly = built.value();
-  if (!poly.flat && reachesInside(patch, poly.planes, poly.polytope.bounds)) {
+  // Small hulls have fewer planes than the outer bound: prune with their own.
+  std::vector<Plane> outer;
+  if (poly.planes.size() > kOwnPlanesUpTo) outer = outerPlanes(poly.polytope);
+  if (!poly.flat && reachesInside(patch, poly.planes, poly.polytope.bounds, -1, std::move(outer))) {
     return Status(ErrorCode::InvalidGeometry, "patch: a triangle reaches into its hull");
   }
   for (const std::array<Plane, 5>& prism : poly.probes) {
@@ -588,6 +655,7 @@ Result<Decomposition> Decomposer::run() {
   if (!tryWholeSurface()) {
     for (int seed = nextSeed(); seed >= 0; seed = nextSeed()) {
       if (Status s = growPatch(seed, HullCheck::Quick); !s.ok()) return s;
+      if (cancel_ && cancel_()) return Status(ErrorCode::InvalidOperation, "build cancelled");
     }
   }
   return std::move(result_);
@@ -595,9 +663,9 @@ Result<Decomposition> Decomposer::run() {
 
 }  // namespace
 
-Result<Decomposition> decomposeConvexSurface(const MeshData& mesh,
-                                             const ProgressCallback& progress) {
-  return Decomposer(mesh, progress).run();
+Result<Decomposition> decomposeConvexSurface(const MeshData& mesh, const ProgressCallback& progress,
+                                             const CancelCallback& cancel) {
+  return Decomposer(mesh, progress, cancel).run();
 }
 
 }  // namespace sc::detail

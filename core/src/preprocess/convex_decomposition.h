@@ -20,7 +20,9 @@ struct Decomposition {
 };
 
 /// Decomposes a validated, outward-oriented closed piece. A convex piece gives one
-/// patch. `progress` may be empty.
-Result<Decomposition> decomposeConvexSurface(const MeshData& mesh, const ProgressCallback& progress);
+/// patch. `progress` and `cancel` may be empty; `cancel` is asked after each patch
+/// and stops the work with InvalidOperation.
+Result<Decomposition> decomposeConvexSurface(const MeshData& mesh, const ProgressCallback& progress,
+                                             const CancelCallback& cancel = {});
 
 }  // namespace sc::detail

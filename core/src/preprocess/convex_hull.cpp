@@ -15,8 +15,8 @@
 #include <algorithm>
 #include <cfenv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <utility>
 
@@ -134,14 +134,22 @@ void markNonCorners(const std::vector<Vec3>& points, const FacetPolygon& poly, d
 }
 
 /// True when every edge is used once in each direction (a closed, oriented shell).
+/// Sorted packed keys, not a map: this runs on every hull the decomposition builds.
 bool isClosed(const std::vector<Tri>& faces) {
-  std::map<std::pair<int, int>, int> directed;
+  auto key = [](int from, int to) {
+    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32 |
+           static_cast<std::uint32_t>(to);
+  };
+  std::vector<std::uint64_t> directed;
+  directed.reserve(3 * faces.size());
   for (const Tri& f : faces) {
-    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+    for (int k = 0; k < 3; ++k) directed.push_back(key(f[k], f[(k + 1) % 3]));
   }
-  for (const auto& [edge, uses] : directed) {
-    const auto reverse = directed.find({edge.second, edge.first});
-    if (uses != 1 || reverse == directed.end() || reverse->second != 1) return false;
+  std::sort(directed.begin(), directed.end());
+  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end()) return false;
+  for (const std::uint64_t edge : directed) {
+    const std::uint64_t reverse = edge << 32 | edge >> 32;
+    if (!std::binary_search(directed.begin(), directed.end(), reverse)) return false;
   }
   return true;
 }

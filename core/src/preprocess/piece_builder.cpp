@@ -13,8 +13,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -91,15 +91,20 @@ void buildSoupLeaves(PieceData& data) {
   data.stats.hull_vertices = 3 * data.stats.patches;
 }
 
+bool cancelled(const BuildOptions& options) { return options.cancel && options.cancel(); }
+
+Status cancelledStatus() { return {ErrorCode::InvalidOperation, "build cancelled"}; }
+
 /// Closed piece, already validated and oriented: its convex patches.
-Status buildPatches(PieceData& data, const ProgressCallback& progress) {
+Status buildPatches(PieceData& data, const ProgressCallback& progress,
+                    const CancelCallback& cancel) {
   if (progress) progress(0.0, "decompose");
   if (detail::isConvex(data.mesh)) {
     data.patches.push_back(convexPatch(data.mesh));
     data.stats.convex = true;
   } else {
     Result<detail::Decomposition> decomposition =
-        detail::decomposeConvexSurface(data.mesh, progress);
+        detail::decomposeConvexSurface(data.mesh, progress, cancel);
     if (!decomposition.ok()) return decomposition.status();
     data.patches = std::move(decomposition.value().patches);
     data.stats.virtual_faces = decomposition.value().virtual_faces;
@@ -112,18 +117,21 @@ Status buildPatches(PieceData& data, const ProgressCallback& progress) {
 }
 
 /// Leaves (patches or soup triangles), then the hierarchy over them.
-Status preprocess(PieceData& data, const ProgressCallback& progress) {
+Status preprocess(PieceData& data, const BuildOptions& options) {
+  const ProgressCallback& progress = options.progress;
   if (data.kind == ModelKind::ClosedPolyhedron) {
     const ProgressCallback stage = subRange(progress, kDecompositionStart, kHierarchyStart);
-    if (Status s = buildPatches(data, stage); !s.ok()) return s;
+    if (Status s = buildPatches(data, stage, options.cancel); !s.ok()) return s;
   } else {
     buildSoupLeaves(data);
   }
-  const double from = data.kind == ModelKind::ClosedPolyhedron ? kHierarchyStart
-                                                                : kDecompositionStart;
+  if (cancelled(options)) return cancelledStatus();
+  const double from =
+      data.kind == ModelKind::ClosedPolyhedron ? kHierarchyStart : kDecompositionStart;
   data.hierarchy = detail::buildHullBvh(data.patches, subRange(progress, from, kHierarchyEnd));
   data.stats.tree_depth = data.hierarchy.depth;
-  return Status::success();
+  // Last chance before the cache file: a cancelled build writes nothing.
+  return cancelled(options) ? cancelledStatus() : Status::success();
 }
 
 /// The warning for a cache file that passed its checksum but not the content checks.
@@ -160,7 +168,8 @@ Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& o
   if (use_cache && detail::loadPieceCache(options.cache_file, key, *data, &rejected)) {
     data->stats.from_cache = true;
   } else {
-    if (Status s = preprocess(*data, options.progress); !s.ok()) return s;
+    if (cancelled(options)) return cancelledStatus();
+    if (Status s = preprocess(*data, options); !s.ok()) return s;
     if (use_cache) file_status = detail::savePieceCache(options.cache_file, key, *data);
     if (!rejected.empty()) file_status = refusedCache(options.cache_file, rejected, file_status);
   }

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: MIT
+// Cancelling buildPiece: the build stops where it is asked to, fails without a
+// piece, and leaves the cache file as it was (absent or untouched).
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "smartcollision/model.h"
+#include "support/sample_meshes.h"
+
+namespace sc {
+namespace {
+
+std::string tempPath(const std::string& name) {
+  const char* dir = std::getenv("TMPDIR");
+  return std::string(dir != nullptr ? dir : "/tmp") + "/sc_cancel_test_" +
+         std::to_string(::getpid()) + "_" + name;
+}
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Removes the file when the test ends.
+struct TempFile {
+  explicit TempFile(const std::string& name) : path(tempPath(name)) { std::remove(path.c_str()); }
+  ~TempFile() { std::remove(path.c_str()); }
+  std::string path;
+};
+
+/// Non-convex: decomposed into some forty patches.
+MeshData torus() { return samples::torusMesh(1.0, 0.3, 40, 20); }
+
+/// Options that cancel once the progress passes `at`; `highest` records the
+/// furthest progress reported.
+BuildOptions cancelAt(double at, const std::string& cache, double& highest) {
+  BuildOptions options;
+  options.cache_file = cache;
+  auto stop = std::make_shared<bool>(false);
+  options.progress = [stop, at, &highest](double fraction, const char*) {
+    highest = std::max(highest, fraction);
+    if (fraction >= at) *stop = true;
+  };
+  options.cancel = [stop] { return *stop; };
+  return options;
+}
+
+TEST(BuildCancel, UncancelledBuildWritesTheCacheFile) {
+  const TempFile file("whole.bvh");
+  double highest = 0.0;
+  const Result<PiecePtr> built =
+      buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(2.0, file.path, highest));
+  ASSERT_TRUE(built.ok()) << built.status().message();
+  EXPECT_GT(built.value()->stats().patches, 1);
+  EXPECT_EQ(highest, 1.0);
+  EXPECT_TRUE(exists(file.path));
+}
+
+TEST(BuildCancel, CancelDuringTheDecompositionStopsThereAndWritesNothing) {
+  const TempFile file("mid.bvh");
+  double highest = 0.0;
+  const Result<PiecePtr> built =
+      buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.3, file.path, highest));
+  ASSERT_FALSE(built.hasValue());
+  EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+  // The decomposition maps to [0.05, 0.85] of the whole: it stopped before its end.
+  EXPECT_GE(highest, 0.3);
+  EXPECT_LT(highest, 0.85);
+  EXPECT_FALSE(exists(file.path));
+}
+
+TEST(BuildCancel, CancelBeforeTheWorkFailsForEveryKind) {
+  for (const ModelKind kind : {ModelKind::ClosedPolyhedron, ModelKind::TriangleSoup}) {
+    const TempFile file("early.bvh");
+    double highest = 0.0;
+    const Result<PiecePtr> built = buildPiece(kind, torus(), cancelAt(0.0, file.path, highest));
+    ASSERT_FALSE(built.hasValue());
+    EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+    EXPECT_EQ(highest, 0.0);
+    EXPECT_FALSE(exists(file.path));
+  }
+}
+
+TEST(BuildCancel, ExistingCacheFileIsLeftAsItWas) {
+  const TempFile file("stale.bvh");
+  const std::string stale = "not a cache file";
+  std::ofstream(file.path, std::ios::binary) << stale;
+  double highest = 0.0;
+  const Result<PiecePtr> built =
+      buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.5, file.path, highest));
+  ASSERT_FALSE(built.hasValue());
+  EXPECT_EQ(readText(file.path), stale);
+}
+
+}  // namespace
+}  // namespace sc

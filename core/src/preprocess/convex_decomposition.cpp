@@ -126,7 +126,8 @@ std::vector<Plane> outerPlanes(const ConvexPolytope& poly) {
   std::sort(faces.begin(), faces.end(),
             [](const auto& a, const auto& b) { return a.first > b.first; });
   std::vector<Vec3> kept;
-  for (const auto& [area, n] : faces) {
+  for (const auto& face : faces) {
+    const Vec3& n = face.second;  // a named reference: lambdas cannot capture bindings
     if (static_cast<int>(kept.size()) == kOuterFaces) break;
     const bool repeated = std::any_of(kept.begin(), kept.end(),
                                       [&](const Vec3& m) { return m.dot(n) > kSameDirection; });

@@ -318,11 +318,11 @@ void gatherPoints(int dir, const Side& t, const Side& o, const Vec3& shift, doub
   if (detail::anyTouching(d.points, t.body, o.body, d.dt)) ++d.plugin.stats().touching;
 }
 
-/// A direction's response: a recovery push, or its row points (after the projection
-/// of an impact) into `d.points`.
-void respond(const DirectedResult& r, int dir, const Side sides[2], DirectionState& d,
+/// A direction's response: a recovery push (false), or true when its row points are
+/// to be gathered, with the projection of an impact in `shift` (the target's move).
+bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionState& d,
              const detail::PairSpring& spring, const ContactSettings& contact, double tolerance,
-             double dt, double threshold) {
+             double dt, double threshold, Vec3& shift) {
   const Side& t = sides[dir];
   const Side& o = sides[1 - dir];
   const PluginSettings& ps = d.plugin.settings();
@@ -334,14 +334,14 @@ void respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
                     detail::recoveryImpulse(t.body, o.body, t.aabb_min, t.aabb_max, o.aabb_min,
                                             o.aabb_max, ps.recovery_speed, period),
                     Vec3::Zero());
-    return;
+    return false;
   }
-  if (r.code != ErrorCode::Ok) return;
+  if (r.code != ErrorCode::Ok) return false;
   if (r.penetrating() && r.tpdv.dot(r.normal) > 0.0) {
     // A depth whose TPDV points out of the opponent is not one (seen from the core
     // when tracking starts within the tolerance of touching): start over.
     d.tracker.forget(dir);
-    return;
+    return false;
   }
   // The rows take over once the pair was seen apart, or at once when the first depth
   // is small enough that its spring energy fits the recovery bound.
@@ -358,21 +358,20 @@ void respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
           d.plugin, t.body, o.body,
           detail::recoveryImpulse(t.body, o.body, toBt(r.normal), depth, ps.recovery_speed, period),
           Vec3::Zero());
-      return;
+      return false;
     }
   }
   // Only a fresh impact is projected: a pair already in contact is the rows' to hold
   // (a soft row lets a pressed body approach; that is its spring, not an impact).
   const bool fresh = !d.in_contact[dir];
   d.in_contact[dir] = r.penetrating();
-  if (!(r.distance < threshold)) return;
-  const Vec3 shift =
-      fresh ? detail::impactProjection(r, t.body, o.body, dt, tolerance) : Vec3::Zero();
+  if (!(r.distance < threshold)) return false;
+  shift = fresh ? detail::impactProjection(r, t.body, o.body, dt, tolerance) : Vec3::Zero();
   if (!shift.isZero()) {
     ++stats.projected;
     detail::deliver(d.plugin, t.body, o.body, detail::impactImpulse(shift, t.body, o.body), shift);
   }
-  gatherPoints(dir, t, o, shift, threshold, tolerance, d);
+  return true;
 }
 
 }  // namespace
@@ -532,9 +531,18 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
                        points_,  contacts_,  corners_,
                        planes_,  dt};
   candidates_.clear();
+  // Both directions' projections first: each moves its own target, so a direction's
+  // rows see its target moved by its shift and its opponent by the other's.
+  Vec3 shifts[2] = {Vec3::Zero(), Vec3::Zero()};
+  bool gather[2] = {false, false};
+  for (int dir = 0; dir < 2; ++dir)
+    gather[dir] = respond(out[dir], dir, sides, state, spring, contact, query.tolerance, dt,
+                          threshold, shifts[dir]);
   for (int dir = 0; dir < 2; ++dir) {
     points_.clear();
-    respond(out[dir], dir, sides, state, spring, contact, query.tolerance, dt, threshold);
+    if (gather[dir])
+      gatherPoints(dir, sides[dir], sides[1 - dir], shifts[dir] - shifts[1 - dir], threshold,
+                   query.tolerance, state);
     const bool target_is_0 = (swapped ? 1 - dir : dir) == 0;  // in the result's order
     for (const detail::RowPoint& p : points_) {
       if (!(p.separation < row_threshold)) continue;

@@ -241,8 +241,8 @@ void populate(World& w, const Scene& s) {
 /// (<= 0 outside). The mesh is inscribed in it: over-reports by the facets' sagitta.
 double torusDepth(const btTransform& mesh_pose, const btVector3& p) {
   const btVector3 q = mesh_pose.inverse() * p;
-  const double ring = std::hypot(double(q.x()), double(q.z())) - kTorusMajor;
-  return kTorusMinor - std::hypot(ring, double(q.y()));
+  return sc::samples::torusDepth(kTorusMajor, kTorusMinor,
+                                 sc::Vec3(double(q.x()), double(q.y()), double(q.z())));
 }
 
 /// Depth of `p` in the bowl's shell (rim at y = 0, centre at the origin), on the

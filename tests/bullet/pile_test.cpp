@@ -53,8 +53,7 @@ btTransform meshPose(const Pile& pile, const btRigidBody& b) {
 /// The mesh is inscribed in it, so this over-reports by the facets' sagitta (< 1.4 mm).
 double torusDepth(const btTransform& pose, const btVector3& p) {
   const btVector3 q = pose.inverse() * p;
-  const double ring = std::hypot(double(q.x()), double(q.z())) - kMajor;
-  return kMinor - std::hypot(ring, double(q.y()));
+  return samples::torusDepth(kMajor, kMinor, Vec3(double(q.x()), double(q.y()), double(q.z())));
 }
 
 /// Depth of `p` in the bowl's shell (rim at y = 0, centre at the origin), on the

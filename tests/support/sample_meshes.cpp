@@ -85,6 +85,11 @@ MeshData torusMesh(double major, double minor, int around, int tube) {
   return m;
 }
 
+double torusDepth(double major, double minor, const Vec3& q) {
+  const double ring = std::hypot(q.x(), q.z()) - major;
+  return minor - std::hypot(ring, q.y());
+}
+
 BowlInnerDepth::BowlInnerDepth(const MeshData& bowl, double inner, double outer, int rings,
                                int segments)
     : cells_(static_cast<std::size_t>(rings * segments)),

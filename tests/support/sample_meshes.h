@@ -15,6 +15,10 @@ MeshData bowlMesh(double inner, double outer, int rings, int segments);
 /// Closed torus around the y axis: radii `major` (of the tube's centre line) and
 /// `minor` (of the tube), `around` x `tube` quads, outward.
 MeshData torusMesh(double major, double minor, int around, int tube);
+/// Depth of point `q` (the torus's own frame) inside the smooth torus of torusMesh's
+/// radii (<= 0 outside); the mesh is inscribed in it, so this over-reports the mesh's
+/// depth by at most the facets' sagitta.
+double torusDepth(double major, double minor, const Vec3& q);
 
 /// Depth of a point in the shell of bowlMesh(inner, outer, rings, segments) through
 /// its inner surface, measured on the mesh's own facets (inscribed in the sphere, they

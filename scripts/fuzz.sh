@@ -8,6 +8,9 @@
 #        SC_FUZZ_SEED=N fixes libFuzzer's seed (scripts/test.sh uses 1, so that the CI
 #        explores the same inputs on every run; unset, each run explores new ones).
 #        SC_FUZZ_TIMEOUT=N: one input running over N seconds fails (default 15).
+#        SC_FUZZ_RUNS=fixed: each target runs the number of inputs tests/fuzz/ci_runs
+#        gives it instead of running for a time (SECONDS then only caps a run at 5x):
+#        with a fixed seed the CI then tries the same inputs on every machine.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-20}"
@@ -43,8 +46,14 @@ for exe in "${targets[@]}"; do
   lsan=()
   supp="$root/tests/fuzz/$name.lsan.supp"
   [[ -f "$supp" ]] && lsan=(LSAN_OPTIONS="suppressions=$supp:print_suppressions=0")
+  limit=(-max_total_time="$seconds")
+  if [[ "${SC_FUZZ_RUNS:-}" == fixed ]]; then
+    runs="$(awk -v n="$name" '$1 == n { print $2 }' "$root/tests/fuzz/ci_runs")"
+    [[ -n "$runs" ]] || { echo "$name: no run count in tests/fuzz/ci_runs" >&2; exit 1; }
+    limit=(-runs="$runs" -max_total_time="$(( 5 * seconds ))")
+  fi
   # -timeout: one input taking this long is a failure (a hang or runaway loop).
-  if env "${lsan[@]}" "$exe" "$scratch/$name" "${seed_option[@]}" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2560 \
+  if env "${lsan[@]}" "$exe" "$scratch/$name" "${seed_option[@]}" "${limit[@]}" -timeout="$timeout" -rss_limit_mb=2560 \
        -print_final_stats=1 -artifact_prefix="$artifacts/$name/" >"$log" 2>&1; then
     runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
     secs="$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)"

@@ -431,8 +431,12 @@ sc::Status readPlyInstance(const PlyElement& e, long long i, long long vertex_co
   for (std::size_t k = 0; k < e.properties.size(); ++k) {
     const PlyProperty& prop = e.properties[k];
     double v = 0;
-    if (!values.value(prop.list ? prop.count_type : prop.type, v) || (prop.list && v < 0))
+    if (!values.value(prop.list ? prop.count_type : prop.type, v))
       return bad(what + " is cut short or holds a bad value ('" + prop.name + "')");
+    // An ASCII count is any whole number the text spells (3.7e33 is one): within
+    // a 32-bit count, a cut-short list is found by reading it.
+    if (prop.list && !(v >= 0 && v <= 2147483647.0))
+      return bad(what + " has a bad item count in '" + prop.name + "'");
     if (!prop.list) {
       const int axis = prop.name == "x" ? 0 : prop.name == "y" ? 1 : prop.name == "z" ? 2 : -1;
       if (is_vertex && axis >= 0) p[static_cast<std::size_t>(axis)] = v;

@@ -214,18 +214,34 @@ Plugin::~Plugin() = default;
 
 Status Plugin::setSettings(const PluginSettings& settings) {
   Status s = validate(settings);
-  if (s.ok()) settings_ = settings;
+  if (s.ok()) settings_ = settings, ++settings_version_;
   return s;
 }
 
 Status Plugin::setBodySettings(const btCollisionObject* body, const ContactSettings& settings) {
   if (body == nullptr) return Status(ErrorCode::InvalidArgument, "null body");
   Status s = validate(settings);
-  if (s.ok()) body_settings_[body] = settings;
+  if (s.ok()) body_settings_[body] = settings, ++settings_version_;
   return s;
 }
 
-void Plugin::clearBodySettings(const btCollisionObject* body) { body_settings_.erase(body); }
+void Plugin::clearBodySettings(const btCollisionObject* body) {
+  if (body_settings_.erase(body) > 0) ++settings_version_;
+}
+
+void accumulate(StepStats& into, const StepStats& pair) {
+  into.pairs += pair.pairs;
+  into.penetrating += pair.penetrating;
+  into.recovering += pair.recovering;
+  into.max_depth = std::max(into.max_depth, pair.max_depth);
+  into.max_rotation = std::max(into.max_rotation, pair.max_rotation);
+  into.projected += pair.projected;
+  into.rows += pair.rows;
+  into.dropped_rows += pair.dropped_rows;
+  into.touching += pair.touching;
+  into.skipped += pair.skipped;
+  into.reused += pair.reused;
+}
 
 ContactSettings Plugin::pairSettings(const btCollisionObject* a, const btCollisionObject* b) const {
   if (body_settings_.empty()) return settings_.contact;
@@ -256,11 +272,11 @@ ModelPtr Plugin::primitiveModel(const btCollisionShape* shape) {
 }
 
 void Plugin::addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& impulse) {
-  if (!impulse.isZero()) impulses_.push_back(Impulse{body, lever, impulse});
+  if (!impulse.isZero() && !rows_pass_) impulses_.push_back(Impulse{body, lever, impulse});
 }
 
 void Plugin::addProjection(btRigidBody* body, const btVector3& shift) {
-  if (shift.isZero()) return;
+  if (shift.isZero() || rows_pass_) return;
   auto [it, fresh] = projections_.try_emplace(body, shift);
   if (fresh) return;
   btVector3& total = it->second;
@@ -272,6 +288,7 @@ void Plugin::addProjection(btRigidBody* body, const btVector3& shift) {
 void Plugin::beginStep() {
   impulses_.clear();
   projections_.clear();
+  projected_.clear();
   stats_ = StepStats();
 }
 
@@ -282,8 +299,13 @@ void Plugin::applyImpulses() {
     btTransform x = body->getWorldTransform();
     x.setOrigin(x.getOrigin() + shift);
     body->setWorldTransform(x);
+    projected_.push_back(body);
   }
   projections_.clear();
+}
+
+bool Plugin::projected(const btCollisionObject* body) const {
+  return std::find(projected_.begin(), projected_.end(), body) != projected_.end();
 }
 
 btCollisionAlgorithmCreateFunc* Plugin::contactCreateFunc() const {

@@ -25,6 +25,46 @@ btVector3 toBt(const Vec3& v) {
 
 Vec3 toVec(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
 
+/// Removes from `m` the points an earlier query left, and this one did not give again,
+/// that now read deeper than `floor`. A persistent manifold keeps them (a new point
+/// takes over only a near cached one): shallower ones are support the query's rows
+/// may lack, but read from the points held on the bodies after they moved, some are
+/// millimetres deeper than the bodies overlap. A given point keeps its world point on
+/// B; `ta`, `tb` are the poses of the manifold's bodies.
+void dropStalePoints(btPersistentManifold* m, const detail::ContactCluster& c,
+                     const btTransform& ta, const btTransform& tb, double floor) {
+  for (int i = m->getNumContacts() - 1; i >= 0; --i) {
+    const btManifoldPoint& p = m->getContactPoint(i);
+    bool given = false;
+    for (int k = 0; k < c.point_count && !given; ++k)
+      given = toBt(c.points[static_cast<std::size_t>(k)].on_b) == p.m_positionWorldOnB;
+    const double depth =
+        double((ta(p.m_localPointA) - tb(p.m_localPointB)).dot(p.m_normalWorldOnB));
+    if (!given && depth < floor) m->removeContactPoint(i);
+  }
+}
+
+/// While alive, the step's statistics count one pair's query alone; at the end the
+/// pair's figures are kept in `pair` and added to the step's.
+class PairFigures {
+ public:
+  PairFigures(StepStats& step, StepStats& pair) : step_(step), pair_(pair), saved_(step) {
+    step_ = StepStats{};
+  }
+  ~PairFigures() {
+    pair_ = step_;
+    accumulate(saved_, step_);
+    step_ = saved_;
+  }
+  PairFigures(const PairFigures&) = delete;
+  PairFigures& operator=(const PairFigures&) = delete;
+
+ private:
+  StepStats& step_;
+  StepStats& pair_;
+  StepStats saved_;
+};
+
 ModelPtr modelOf(Plugin& plugin, const btCollisionShape* shape) {
   if (shape->getShapeType() == kShapeType)
     return static_cast<const ScBulletShape*>(shape)->modelPtr();
@@ -366,7 +406,9 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
   const bool fresh = !d.in_contact[dir];
   d.in_contact[dir] = r.penetrating();
   if (!(r.distance < threshold)) return false;
-  shift = fresh ? detail::impactProjection(r, t.body, o.body, dt, tolerance) : Vec3::Zero();
+  // The rows pass measures rows after the projections: none is projected again.
+  shift = fresh && !d.plugin.rowsPass() ? detail::impactProjection(r, t.body, o.body, dt, tolerance)
+                                        : Vec3::Zero();
   if (!shift.isZero()) {
     ++stats.projected;
     detail::deliver(d.plugin, t.body, o.body, detail::impactImpulse(shift, t.body, o.body), shift);
@@ -396,27 +438,44 @@ ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructio
   }
 }
 
-bool ScCollisionAlgorithm::stillApart(const btCollisionObjectWrapper* const wraps[2],
-                                      double threshold) const {
-  if (!(queried_gap_ > threshold)) return false;
-  double bound = 0.0;  // how much closer the two surfaces can have come
+double ScCollisionAlgorithm::motionSinceQuery(
+    const btCollisionObjectWrapper* const wraps[2]) const {
+  double bound = 0.0;
   for (int i = 0; i < 2; ++i) {
     const btTransform& now = wraps[i]->getWorldTransform();
     bound += double((now.getOrigin() - queried_[i].getOrigin()).length());
-    // A point at distance r from the origin moves by the chord 2 r sin(angle / 2).
-    const double c =
-        std::min(1.0, std::abs(double(now.getRotation().dot(queried_[i].getRotation()))));
-    bound += 2.0 * reach_[i] * std::sqrt(1.0 - c * c);
+    // A point at distance r from the origin moves by the chord 2 r sin(angle / 2),
+    // which is at most 2 r |q - q'| (the nearer sign of q'). Unlike the angle from
+    // the dot product, the difference has no rounding floor: a float dot product one
+    // ulp below 1 reads as 3.5e-4 rad.
+    const btQuaternion q = now.getRotation(), p = queried_[i].getRotation();
+    const double minus = double((q - p).length()), plus = double((q + p).length());
+    bound += 2.0 * reach_[i] * std::min(minus, plus);
   }
+  return bound;
+}
+
+bool ScCollisionAlgorithm::stillApart(const btCollisionObjectWrapper* const wraps[2],
+                                      double threshold) const {
+  if (!(queried_gap_ > threshold)) return false;
   // The poses are Bullet's floats: keep a margin of their rounding.
   const double rounding = 1e-6 * (reach_[0] + reach_[1] + queried_gap_);
-  return bound + rounding < queried_gap_ - threshold;
+  return motionSinceQuery(wraps) + rounding < queried_gap_ - threshold;
+}
+
+bool ScCollisionAlgorithm::rowsStillHold(const btCollisionObjectWrapper* const wraps[2]) const {
+  // A hundredth of the tolerance: far below what the rows resolve, far above the
+  // creep of a body at rest (nm per step), so a resting pair is queried again only
+  // when something moves it.
+  return rows_kept_ && kept_version_ == plugin_->settingsVersion() &&
+         motionSinceQuery(wraps) < 0.01 * plugin_->settings().query.tolerance;
 }
 
 void ScCollisionAlgorithm::rememberQuery(const btCollisionObjectWrapper* const wraps[2],
                                          const DirectedResult out[2], const Directions& dirs) {
   ever_queried_ = true;
   queried_gap_ = -1.0;
+  for (int i = 0; i < 2; ++i) queried_[i] = wraps[i]->getWorldTransform();
   double gap = kInfinity;
   for (int dir = 0; dir < 2; ++dir) {
     if (!(dir == 0 ? dirs.a_target : dirs.b_target)) continue;
@@ -424,9 +483,7 @@ void ScCollisionAlgorithm::rememberQuery(const btCollisionObjectWrapper* const w
     if (r.code != ErrorCode::Ok || r.penetrating() || !(r.distance >= 0.0)) return;
     gap = std::min(gap, r.distance);
   }
-  if (!(gap < kInfinity)) return;
-  for (int i = 0; i < 2; ++i) queried_[i] = wraps[i]->getWorldTransform();
-  queried_gap_ = gap;
+  if (gap < kInfinity) queried_gap_ = gap;
 }
 
 ScCollisionAlgorithm::~ScCollisionAlgorithm() {
@@ -474,6 +531,8 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   // The pair keeps its order for its life; side i is objects_[i] in any case, so
   // the tracker's directions stay attached to the same bodies.
   if (!models_[0] || !models_[1]) return;
+  if (plugin_->rowsPass() && !plugin_->projected(objects_[0]) && !plugin_->projected(objects_[1]))
+    return;
   const bool swapped = body0->getCollisionObject() != objects_[0];
   const btCollisionObjectWrapper* wraps[2] = {swapped ? body1 : body0, swapped ? body0 : body1};
   Side sides[2];
@@ -492,6 +551,19 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
     ++stats.skipped;
     return;
   }
+  if (!closest_points_ && !plugin_->impactPass() && rowsStillHold(wraps)) {
+    // The manifolds still hold the query's rows: their depths follow the small motion
+    // (as Bullet's own algorithms refresh theirs); stale depths would make the rows
+    // push a body on after it moved out, a jitter of the size of the bound.
+    for (btPersistentManifold* m : manifolds_)
+      if (m != nullptr && m->getNumContacts() > 0)
+        m->refreshContactPoints(wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform());
+    accumulate(stats, queried_stats_);
+    ++stats.reused;
+    return;
+  }
+  // This query's figures apart from the step's, to be repeated while its rows hold.
+  PairFigures figures(stats, queried_stats_);
   const ContactSettings contact = plugin_->pairSettings(objects_[0], objects_[1]);
   const SceneSettings query = pairQuerySettings(ps.query, contact, sides, double(info.m_timeStep));
   Directions dirs;
@@ -502,6 +574,8 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   for (int dir = 0; dir < 2; ++dir) inflate(out[dir], sides[dir].radius, sides[1 - dir].radius);
   rememberQuery(wraps, out, dirs);
 
+  rows_kept_ = false;
+  kept_version_ = plugin_->settingsVersion();
   if (closest_points_) {
     result->setPersistentManifold(manifold_);
     reportClosestPoints(out, sides, swapped, result);
@@ -555,6 +629,11 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
     }
   }
   stats.dropped_rows += detail::buildClusters(candidates_, labels_, clusters_);
+  // No kept point deeper than the pair's translational depth plus the tolerance.
+  double stale_floor = -query.tolerance;
+  for (int dir = 0; dir < 2; ++dir)
+    if (out[dir].code == ErrorCode::Ok && out[dir].penetrating())
+      stale_floor = std::min(stale_floor, -query.tolerance - out[dir].tpdv.norm());
   bool taken[kManifolds] = {false, false, false, false};
   int rows = 0;
   for (const detail::ContactCluster& c : clusters_) {
@@ -564,12 +643,16 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
       const detail::RowCandidate& p = c.points[static_cast<std::size_t>(k)];
       result->addContactPoint(toBt(p.normal), toBt(p.on_b), btScalar(p.separation));
     }
+    dropStalePoints(m, c, wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform(),
+                    stale_floor);
     result->refreshContactPoints();
     rows += m->getNumContacts();
   }
   for (int i = 0; i < kManifolds; ++i)
     if (!taken[i] && manifolds_[i] != nullptr) manifolds_[i]->clearManifold();
   stats.rows += rows;
+  // Pushes and projections act once: a pair that had one is queried again.
+  rows_kept_ = stats.recovering == 0 && stats.projected == 0;
   // An impact's rows stay rigid for the step: they take the approach speed at once
   // (restitution 0), where a soft row would let a fast body on through.
   if (ps.model != ContactModel::Potential || stats.projected != projected_before) return;

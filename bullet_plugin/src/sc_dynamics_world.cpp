@@ -35,11 +35,24 @@ void ScDynamicsWorld::performDiscreteCollisionDetection() {
   if (plugin_) plugin_->beginStep();
   btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
   if (plugin_) plugin_->applyImpulses();
+  if (plugin_ && plugin_->anyProjected()) measureRowsAgain();
   last_poses_.clear();
   for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
     const btRigidBody* body = m_nonStaticRigidBodies[i];
     if (body->isActive()) last_poses_.emplace(body, body->getWorldTransform());
   }
+}
+
+void ScDynamicsWorld::measureRowsAgain() {
+  // A projection moves a body after its other pairs measured their rows: points held
+  // on it would then read the projection as depth (a body put back 3 cm along a
+  // neighbour's normal read 6 mm into that neighbour). Those pairs measure again.
+  const StepStats first = plugin_->stats();
+  plugin_->setRowsPass(true);
+  m_dispatcher1->dispatchAllCollisionPairs(m_broadphasePairCache->getOverlappingPairCache(),
+                                           getDispatchInfo(), m_dispatcher1);
+  plugin_->setRowsPass(false);
+  plugin_->stats() = first;
 }
 
 void ScDynamicsWorld::integrateTransforms(btScalar timeStep) {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Passive pairs cost nothing: a pair apart by more than the bodies can have moved
-// since its last query is not queried again, and a body approaching fast is still
-// caught at the surface (the skip is conservative, never a tunnel).
+// since its last query is not queried again, nor a pair at rest in contact, and a
+// body approaching fast is still caught at the surface (the skip is conservative,
+// never a tunnel).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -50,6 +51,47 @@ TEST(PassivePairs, RestingPairApartIsNotQueriedAgain) {
     EXPECT_EQ(w.plugin->stats().skipped, 1);
   }
 }
+
+class RestingPair : public ::testing::TestWithParam<bullet::ContactModel> {};
+
+// A box at rest on a fixed one keeps the rows of its last query (and its figures)
+// while it stays within a hundredth of the tolerance of that query's pose; a push, or
+// new settings, make the pair measure again.
+TEST_P(RestingPair, KeepsItsRowsUntilMovedOrResettled) {
+  BulletWorld w(GetParam(), -9.81, 60.0);
+  auto shape = boxShape(btVector3(btScalar(kHalf), btScalar(kHalf), btScalar(kHalf)));
+  w.addBody(shape, 0.0, btVector3(0, 0, 0));
+  btRigidBody* top = w.addBody(shape, 1.0, btVector3(0, btScalar(2 * kHalf + 0.001), 0));
+  w.step(120);  // settled
+  const btVector3 rest = top->getCenterOfMassPosition();
+  int reused = 0;
+  for (int i = 0; i < 30; ++i) {
+    w.step();
+    const bullet::StepStats& s = w.plugin->stats();
+    EXPECT_EQ(s.pairs, 1);
+    EXPECT_GE(s.rows, 4);  // the kept rows, counted as when measured
+    reused += s.reused;
+  }
+  EXPECT_GE(reused, 25);
+  EXPECT_LT(double((top->getCenterOfMassPosition() - rest).length()), 1e-4);  // still held
+  top->setLinearVelocity(btVector3(0.5f, 0, 0));  // slides 8 mm a step
+  w.step();
+  w.step();
+  EXPECT_EQ(w.plugin->stats().reused, 0);
+  EXPECT_GE(w.plugin->stats().rows, 4);
+  top->setLinearVelocity(btVector3(0, 0, 0));
+  w.step(60);
+  bullet::PluginSettings s = w.plugin->settings();
+  s.contact.friction_scale *= 0.5;
+  ASSERT_TRUE(w.plugin->setSettings(s).ok());
+  w.step();
+  EXPECT_EQ(w.plugin->stats().reused, 0);  // rows made under other settings
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, RestingPair,
+                         ::testing::Values(bullet::ContactModel::Potential,
+                                           bullet::ContactModel::Manifold),
+                         contactModelName);
 
 class PassiveApproach : public ::testing::TestWithParam<bullet::ContactModel> {};
 

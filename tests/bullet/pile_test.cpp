@@ -222,9 +222,10 @@ TEST_P(PileInBowl, RestsWithoutPassingTheFloor) {
 
 class PileImpacts : public ::testing::TestWithParam<PileParam> {};
 
-// Impacts included, over the first 3 s: holds at 240 Hz; not yet at 60 Hz (issue 16
-// open: 10.5 mm between tori and 9.6 mm in the bowl, potential Input, since each
-// direction's rows see both bodies' impact projections; 32 mm before).
+// Impacts included, over the first 3 s: holds at 240 Hz; not yet at 60 Hz. Between
+// tori a body resting on another is driven into it when a third lands on it or it
+// lands itself (projection applies to fresh impacts only): 13-76 mm over seven drop
+// seeds in every model (this seed: 32 mm potential Input), in the bowl 4-15 mm.
 TEST_P(PileImpacts, OverlapsStayWithinTenMillimetres) {
   const PileRun r = dropAndRun(GetParam(), kImpactSeconds);
   EXPECT_LE(r.worst.bowl, 0.010);
@@ -262,15 +263,17 @@ double realOverlap(const Pile& pile, const std::vector<btVector3>& samples, cons
   return depth;
 }
 
-/// Largest amount by which a manifold point is deeper than its bodies' real overlap.
-double manifoldExcess(const BulletWorld& w, const Pile& pile,
-                      const std::vector<btVector3>& samples) {
+/// Largest amount by which a manifold point is deeper than its bodies' real overlap,
+/// or `worst` if none exceeds it (the overlap is >= 0, so a manifold no deeper than
+/// `worst` cannot: its sampling is skipped).
+double manifoldExcess(const BulletWorld& w, const Pile& pile, const std::vector<btVector3>& samples,
+                      double worst) {
   auto dynamic = [&](const btCollisionObject* o) -> const btRigidBody* {
     for (const btRigidBody* b : pile.bodies)
       if (b == o) return b;
     return nullptr;
   };
-  double excess = -1e30;
+  double excess = worst;
   for (int m = 0; m < w.dispatcher->getNumManifolds(); ++m) {
     const btPersistentManifold* pm = w.dispatcher->getManifoldByIndexInternal(m);
     // Each point's depth at the current poses, as Bullet refreshes it from the points
@@ -283,7 +286,7 @@ double manifoldExcess(const BulletWorld& w, const Pile& pile,
       const btScalar d = (ta(c.m_localPointA) - tb(c.m_localPointB)).dot(c.m_normalWorldOnB);
       deepest = std::max(deepest, -double(d));
     }
-    if (!(deepest > 0.0)) continue;
+    if (!(deepest > 0.0) || deepest <= excess) continue;
     const btRigidBody* a = dynamic(pm->getBody0());
     const btRigidBody* b = dynamic(pm->getBody1());
     if (a == nullptr) std::swap(a, b);
@@ -299,7 +302,8 @@ double manifoldExcess(const BulletWorld& w, const Pile& pile,
 class PileManifold : public ::testing::TestWithParam<double> {};
 
 /// The plugin's world with a hook after each detection (its impact projections
-/// applied), before the solver: where the manifold's points are what the solver gets.
+/// applied): after the first detection of a step, before the solver, the manifold's
+/// points are what the solver gets.
 class CheckedWorld : public bullet::ScDynamicsWorld {
  public:
   using ScDynamicsWorld::ScDynamicsWorld;
@@ -326,7 +330,11 @@ TEST_P(PileManifold, PointsNoDeeperThanTheRealOverlap) {
   double worst = -1e30;
   int worst_step = -1, step = 0;
   world->after_detection = [&] {
-    const double e = manifoldExcess(w, pile, samples);
+    // The detection after the integration (the impact pass) leaves the rows of pairs
+    // in contact as they were: no solver reads them before the next step measures
+    // them again (or refreshes them at the new poses); they are checked then.
+    if (w.plugin->impactPass()) return;
+    const double e = manifoldExcess(w, pile, samples, worst);
     if (e > worst) worst = e, worst_step = step;
   };
   for (step = 0; step < steps; ++step) w.step();

@@ -11,28 +11,10 @@
 #include <vector>
 
 #include "smartcollision/bullet/settings.h"
+#include "smartcollision/bullet/step_stats.h"
 #include "smartcollision/model.h"
 
 namespace sc::bullet {
-
-/// What the last collision detection saw (for metrics and tests).
-struct StepStats {
-  int pairs = 0;              ///< pairs the algorithm ran on
-  int penetrating = 0;        ///< directions with a penetration depth
-  int recovering = 0;         ///< directions first seen intersecting (AABB push)
-  double max_depth = 0.0;     ///< largest |TPDV| [m]
-  double max_rotation = 0.0;  ///< largest |RPDV| [rad]
-  int projected = 0;          ///< directions whose impact was projected to the entry side
-  int rows = 0;               ///< contact rows handed to Bullet's solver
-  int dropped_rows = 0;       ///< row candidates beyond the patches a pair keeps
-  /// directions in contact this step: a row touching, or whose gap closes within the
-  /// step at the current approach speed (the rows stop a body at the surface, so an
-  /// impact shows here before any penetration does)
-  int touching = 0;
-  /// pairs not queried: apart at their last query by more than the bodies could have
-  /// moved towards each other since (a conservative bound), so nothing can respond
-  int skipped = 0;
-};
 
 class Plugin {
  public:
@@ -45,7 +27,13 @@ class Plugin {
   /// InvalidArgument (settings kept) when validate(settings) fails.
   Status setSettings(const PluginSettings& settings);
   ContactModel contactModel() const { return settings_.model; }
-  void setContactModel(ContactModel model) { settings_.model = model; }
+  void setContactModel(ContactModel model) {
+    settings_.model = model;
+    ++settings_version_;
+  }
+  /// Changes with every change of the settings or of a body's: a pair's kept rows
+  /// are only valid under the settings they were made with.
+  int settingsVersion() const { return settings_version_; }
 
   /// Per-body override of the world's ContactSettings. A pair with two overridden
   /// bodies takes the larger stiffnesses and damping ratio and the shorter period.
@@ -83,6 +71,14 @@ class Plugin {
   /// could have moved since) are queried then; pairs in contact keep their rows.
   void setImpactPass(bool on) { impact_pass_ = on; }
   bool impactPass() const { return impact_pass_; }
+  /// Set by ScDynamicsWorld around a dispatch after projections were applied: only
+  /// pairs with a projected body measure their rows again (at the bodies' new poses),
+  /// and nothing is pushed or projected.
+  void setRowsPass(bool on) { rows_pass_ = on; }
+  bool rowsPass() const { return rows_pass_; }
+  /// Bodies moved by the last applyImpulses() (none after beginStep()).
+  bool anyProjected() const { return !projected_.empty(); }
+  bool projected(const btCollisionObject* body) const;
 
   StepStats& stats() { return stats_; }
   const StepStats& stats() const { return stats_; }
@@ -113,6 +109,9 @@ class Plugin {
   StepStats stats_;
   bool world_attached_ = false;
   bool impact_pass_ = false;
+  bool rows_pass_ = false;
+  std::vector<const btCollisionObject*> projected_;
+  int settings_version_ = 0;
   std::unique_ptr<CreateFuncs> create_funcs_;
 };
 

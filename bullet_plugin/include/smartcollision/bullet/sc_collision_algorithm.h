@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "smartcollision/bullet/step_stats.h"
 #include "smartcollision/collision.h"
 #include "smartcollision/model.h"
 
@@ -62,6 +63,11 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   double queried_gap_ = -1.0;
   bool ever_queried_ = false;
   double reach_[2] = {0.0, 0.0};  ///< per side: farthest surface point from its origin
+  /// The last query's figures, and whether its rows may be kept while the bodies stay
+  /// put (a query that projected an impact or pushed a pair apart may not).
+  StepStats queried_stats_;
+  bool rows_kept_ = false;
+  int kept_version_ = -1;  ///< Plugin::settingsVersion() of that query
   PairTracker tracker_;
   PairTracker rows_tracker_;                ///< Input-mode rows of non-convex pairs in Mix and Free
   std::vector<ContactPoint> contacts_;      ///< the core's contacts of a direction (reused)
@@ -75,8 +81,14 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   /// The manifold for a patch of normal `normal`: the one that held the same patch
   /// last step, else an empty one; marks it taken.
   btPersistentManifold* manifoldFor(const Vec3& normal, bool taken[kManifolds]);
+  /// How much the two bodies' surfaces can have moved relative to each other since
+  /// the last query (origin displacements plus rotation chords at their reach).
+  double motionSinceQuery(const btCollisionObjectWrapper* const wraps[2]) const;
   /// True when the pair is still surely apart by `threshold` (see queried_gap_).
   bool stillApart(const btCollisionObjectWrapper* const wraps[2], double threshold) const;
+  /// True when the last query's rows still hold: the bodies moved by less than a
+  /// hundredth of the tolerance since, under the same settings.
+  bool rowsStillHold(const btCollisionObjectWrapper* const wraps[2]) const;
   /// Keeps the poses and the gap of this step's query.
   void rememberQuery(const btCollisionObjectWrapper* const wraps[2], const DirectedResult out[2],
                      const Directions& dirs);

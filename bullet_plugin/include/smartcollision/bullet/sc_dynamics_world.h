@@ -46,6 +46,9 @@ class ScDynamicsWorld : public btDiscreteDynamicsWorld {
 
  private:
   bool movedFar() const;
+  /// Dispatches again so that pairs with a body just projected measure their rows at
+  /// its new pose (Plugin::setRowsPass).
+  void measureRowsAgain();
   std::shared_ptr<Plugin> plugin_;
   std::unordered_map<const btCollisionObject*, btTransform> last_poses_;
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "smartcollision/bullet/plugin.h"
+#include "step_buffer.h"
 
 namespace sc::bullet::detail {
 
@@ -204,9 +205,9 @@ void deliver(Plugin& plugin, const BodySide& t, const BodySide& o, const btVecto
   // Recovery impulses act at the placement centre (the body's centre of mass unless
   // the shape is a compound's child).
   const btVector3 lever = t.center - body->getCenterOfMassPosition();
-  if (plugin.worldAttached()) {
-    plugin.addImpulse(body, lever, impulse);
-    plugin.addProjection(body, toBt(projection));
+  if (plugin.stepBuffer().worldAttached()) {
+    plugin.stepBuffer().addImpulse(body, lever, impulse);
+    plugin.stepBuffer().addProjection(body, toBt(projection));
     return;
   }
   body->applyImpulse(impulse, lever);

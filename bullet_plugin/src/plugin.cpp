@@ -10,9 +10,10 @@
 #include <cmath>
 #include <new>
 
+#include "sc_collision_algorithm.h"
+#include "sc_plane_algorithm.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
-#include "smartcollision/bullet/sc_collision_algorithm.h"
-#include "smartcollision/bullet/sc_plane_algorithm.h"
+#include "step_buffer.h"
 
 namespace sc::bullet {
 
@@ -111,33 +112,38 @@ ModelPtr capsuleModel(const btCapsuleShape& capsule) {
   return coreModel(-half, half);
 }
 
-/// What identifies a primitive's model: a shape changed in place (or a new shape at a
-/// freed address) gets a new one. Zero for shapes without a model.
-btVector3 primitiveSignature(const btCollisionShape* shape) {
+/// Everything a primitive's model depends on, exactly: a shape changed in place (an
+/// edited hull, a resized box) or a new shape at a freed address gets a new model
+/// (sums of the coordinates, the key before, let a reordered or edited hull of the
+/// same sums keep a stale one). Empty for shapes without a model.
+std::vector<btScalar> primitiveKey(const btCollisionShape* shape) {
+  std::vector<btScalar> key{btScalar(shape->getShapeType())};
+  auto add = [&key](const btVector3& v) { key.insert(key.end(), {v.x(), v.y(), v.z()}); };
   switch (shape->getShapeType()) {
     case BOX_SHAPE_PROXYTYPE:
-      return static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin();
+      add(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin());
+      return key;
     case CONVEX_HULL_SHAPE_PROXYTYPE: {
       const auto* hull = static_cast<const btConvexHullShape*>(shape);
-      btVector3 sum(0, 0, 0);
-      for (int i = 0; i < hull->getNumPoints(); ++i) sum += hull->getScaledPoint(i);
-      return btVector3(btScalar(hull->getNumPoints()), sum.x() + sum.y() + sum.z(), sum.length());
+      for (int i = 0; i < hull->getNumPoints(); ++i) add(hull->getScaledPoint(i));
+      return key;
     }
     case SPHERE_SHAPE_PROXYTYPE:
-      return btVector3(1, 0, 0);  // the point does not depend on the radius
+      return key;  // the point does not depend on the radius
     case CAPSULE_SHAPE_PROXYTYPE: {
       const auto* capsule = static_cast<const btCapsuleShape*>(shape);
-      return btVector3(2, capsule->getHalfHeight(), btScalar(capsule->getUpAxis()));
+      key.insert(key.end(), {capsule->getHalfHeight(), btScalar(capsule->getUpAxis())});
+      return key;
     }
     default:
-      return btVector3(0, 0, 0);
+      return {};
   }
 }
 
-ModelPtr buildPrimitiveModel(const btCollisionShape* shape, const btVector3& signature) {
+ModelPtr buildPrimitiveModel(const btCollisionShape* shape) {
   switch (shape->getShapeType()) {
     case BOX_SHAPE_PROXYTYPE:
-      return boxModel(signature);
+      return boxModel(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin());
     case CONVEX_HULL_SHAPE_PROXYTYPE:
       return hullModel(*static_cast<const btConvexHullShape*>(shape));
     case SPHERE_SHAPE_PROXYTYPE:
@@ -208,7 +214,9 @@ struct Plugin::CreateFuncs {
 };
 
 Plugin::Plugin(const PluginSettings& settings)
-    : settings_(settings), create_funcs_(std::make_unique<CreateFuncs>(this)) {}
+    : settings_(settings),
+      step_(std::make_unique<detail::StepBuffer>()),
+      create_funcs_(std::make_unique<CreateFuncs>(this)) {}
 
 Plugin::~Plugin() = default;
 
@@ -262,51 +270,16 @@ ContactSettings Plugin::pairSettings(const btCollisionObject* a, const btCollisi
 }
 
 ModelPtr Plugin::primitiveModel(const btCollisionShape* shape) {
-  const btVector3 signature = primitiveSignature(shape);
-  if (signature.isZero()) return nullptr;
+  std::vector<btScalar> key = primitiveKey(shape);
+  if (key.empty()) return nullptr;
   auto it = models_.find(shape);
-  if (it != models_.end() && it->second.signature == signature) return it->second.model;
-  ModelPtr model = buildPrimitiveModel(shape, signature);
-  models_[shape] = CachedModel{model, signature};
+  if (it != models_.end() && it->second.key == key) return it->second.model;
+  ModelPtr model = buildPrimitiveModel(shape);
+  models_[shape] = CachedModel{model, std::move(key)};
   return model;
 }
 
-void Plugin::addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& impulse) {
-  if (!impulse.isZero() && !rows_pass_) impulses_.push_back(Impulse{body, lever, impulse});
-}
-
-void Plugin::addProjection(btRigidBody* body, const btVector3& shift) {
-  if (shift.isZero() || rows_pass_) return;
-  auto [it, fresh] = projections_.try_emplace(body, shift);
-  if (fresh) return;
-  btVector3& total = it->second;
-  const btVector3 along = total.normalized();
-  const btScalar reach = shift.dot(along);
-  total = along * std::max(total.length(), reach) + (shift - along * reach);
-}
-
-void Plugin::beginStep() {
-  impulses_.clear();
-  projections_.clear();
-  projected_.clear();
-  stats_ = StepStats();
-}
-
-void Plugin::applyImpulses() {
-  for (const Impulse& i : impulses_) i.body->applyImpulse(i.impulse, i.lever);
-  impulses_.clear();
-  for (auto& [body, shift] : projections_) {
-    btTransform x = body->getWorldTransform();
-    x.setOrigin(x.getOrigin() + shift);
-    body->setWorldTransform(x);
-    projected_.push_back(body);
-  }
-  projections_.clear();
-}
-
-bool Plugin::projected(const btCollisionObject* body) const {
-  return std::find(projected_.begin(), projected_.end(), body) != projected_.end();
-}
+const StepStats& Plugin::stats() const { return step_->stats(); }
 
 btCollisionAlgorithmCreateFunc* Plugin::contactCreateFunc() const {
   return &create_funcs_->contact;

@@ -2,7 +2,7 @@
 // ScCollisionAlgorithm: builds the two group views from the Bullet objects, runs
 // the pair tracker, and hands the results to the potential model (impulses), to a
 // persistent manifold (Bullet's solver), or to a closest-points query.
-#include "smartcollision/bullet/sc_collision_algorithm.h"
+#include "sc_collision_algorithm.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "contact_clusters.h"
 #include "contact_response.h"
 #include "smartcollision/bullet/plugin.h"
+#include "step_buffer.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
 
 namespace sc::bullet {
@@ -355,7 +356,7 @@ void gatherPoints(int dir, const Side& t, const Side& o, const Vec3& shift, doub
   const double floor = -(r.penetrating() ? r.tpdv.norm() : 0.0) - tolerance;
   for (std::size_t i = exact; i < d.points.size(); ++i)
     d.points[i].separation = std::max(d.points[i].separation, floor);
-  if (detail::anyTouching(d.points, t.body, o.body, d.dt)) ++d.plugin.stats().touching;
+  if (detail::anyTouching(d.points, t.body, o.body, d.dt)) ++d.plugin.stepBuffer().stats().touching;
 }
 
 /// A direction's response: a recovery push (false), or true when its row points are
@@ -366,7 +367,7 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
   const Side& t = sides[dir];
   const Side& o = sides[1 - dir];
   const PluginSettings& ps = d.plugin.settings();
-  StepStats& stats = d.plugin.stats();
+  StepStats& stats = d.plugin.stepBuffer().stats();
   const double period = contact.contact_period_steps * dt;  // recovery time scale
   if (r.code == ErrorCode::InvalidInitialTransformation) {
     ++stats.recovering;
@@ -407,7 +408,7 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
   d.in_contact[dir] = r.penetrating();
   if (!(r.distance < threshold)) return false;
   // The rows pass measures rows after the projections: none is projected again.
-  shift = fresh && !d.plugin.rowsPass() ? detail::impactProjection(r, t.body, o.body, dt, tolerance)
+  shift = fresh && !d.plugin.stepBuffer().rowsPass() ? detail::impactProjection(r, t.body, o.body, dt, tolerance)
                                         : Vec3::Zero();
   if (!shift.isZero()) {
     ++stats.projected;
@@ -531,7 +532,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   // The pair keeps its order for its life; side i is objects_[i] in any case, so
   // the tracker's directions stay attached to the same bodies.
   if (!models_[0] || !models_[1]) return;
-  if (plugin_->rowsPass() && !plugin_->projected(objects_[0]) && !plugin_->projected(objects_[1]))
+  if (plugin_->stepBuffer().rowsPass() && !plugin_->stepBuffer().projected(objects_[0]) && !plugin_->stepBuffer().projected(objects_[1]))
     return;
   const bool swapped = body0->getCollisionObject() != objects_[0];
   const btCollisionObjectWrapper* wraps[2] = {swapped ? body1 : body0, swapped ? body0 : body1};
@@ -539,19 +540,19 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   for (int i = 0; i < 2; ++i) makeSide(wraps[i], models_[i].get(), sides[i]);
 
   const PluginSettings& ps = plugin_->settings();
-  StepStats& stats = plugin_->stats();
+  StepStats& stats = plugin_->stepBuffer().stats();
   const double threshold = double(std::min(
       objects_[0]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
       objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
   // After the integration only a fresh impact needs a query (a pair in contact is
   // its rows' to hold until the next step's detection).
-  if (!closest_points_ && plugin_->impactPass() && ever_queried_ && !(queried_gap_ >= 0.0)) return;
+  if (!closest_points_ && plugin_->stepBuffer().impactPass() && ever_queried_ && !(queried_gap_ >= 0.0)) return;
   if (!closest_points_ && stillApart(wraps, threshold)) {
     ++stats.pairs;
     ++stats.skipped;
     return;
   }
-  if (!closest_points_ && !plugin_->impactPass() && rowsStillHold(wraps)) {
+  if (!closest_points_ && !plugin_->stepBuffer().impactPass() && rowsStillHold(wraps)) {
     // The manifolds still hold the query's rows: their depths follow the small motion
     // (as Bullet's own algorithms refresh theirs); stale depths would make the rows
     // push a body on after it moved out, a jitter of the size of the bound.

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <utility>
 
+#include "smartcollision/bullet/plugin.h"
+#include "step_buffer.h"
+
 namespace sc::bullet {
 
 ScDynamicsWorld::ScDynamicsWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase,
@@ -14,7 +17,7 @@ ScDynamicsWorld::ScDynamicsWorld(btDispatcher* dispatcher, btBroadphaseInterface
                                  std::shared_ptr<Plugin> plugin)
     : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration),
       plugin_(std::move(plugin)) {
-  if (plugin_) plugin_->attachWorld(true);
+  if (plugin_) plugin_->stepBuffer().attachWorld(true);
   useStackingSolverSettings(getSolverInfo());
 }
 
@@ -28,14 +31,14 @@ void useStackingSolverSettings(btContactSolverInfo& info) {
 }
 
 ScDynamicsWorld::~ScDynamicsWorld() {
-  if (plugin_) plugin_->attachWorld(false);
+  if (plugin_) plugin_->stepBuffer().attachWorld(false);
 }
 
 void ScDynamicsWorld::performDiscreteCollisionDetection() {
-  if (plugin_) plugin_->beginStep();
+  if (plugin_) plugin_->stepBuffer().begin();
   btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
-  if (plugin_) plugin_->applyImpulses();
-  if (plugin_ && plugin_->anyProjected()) measureRowsAgain();
+  if (plugin_) plugin_->stepBuffer().apply();
+  if (plugin_ && plugin_->stepBuffer().anyProjected()) measureRowsAgain();
   last_poses_.clear();
   for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
     const btRigidBody* body = m_nonStaticRigidBodies[i];
@@ -47,12 +50,12 @@ void ScDynamicsWorld::measureRowsAgain() {
   // A projection moves a body after its other pairs measured their rows: points held
   // on it would then read the projection as depth (a body put back 3 cm along a
   // neighbour's normal read 6 mm into that neighbour). Those pairs measure again.
-  const StepStats first = plugin_->stats();
-  plugin_->setRowsPass(true);
+  const StepStats first = plugin_->stepBuffer().stats();
+  plugin_->stepBuffer().setRowsPass(true);
   m_dispatcher1->dispatchAllCollisionPairs(m_broadphasePairCache->getOverlappingPairCache(),
                                            getDispatchInfo(), m_dispatcher1);
-  plugin_->setRowsPass(false);
-  plugin_->stats() = first;
+  plugin_->stepBuffer().setRowsPass(false);
+  plugin_->stepBuffer().stats() = first;
 }
 
 void ScDynamicsWorld::integrateTransforms(btScalar timeStep) {
@@ -63,12 +66,12 @@ void ScDynamicsWorld::integrateTransforms(btScalar timeStep) {
   // side within the step, not one frame later. Pairs apart by more than their motion
   // and pairs already in contact are not queried again (Plugin::setImpactPass). The
   // step's statistics stay the first detection's, plus this pass's corrections.
-  const StepStats first = plugin_->stats();
-  plugin_->setImpactPass(true);
+  const StepStats first = plugin_->stepBuffer().stats();
+  plugin_->stepBuffer().setImpactPass(true);
   performDiscreteCollisionDetection();
-  plugin_->setImpactPass(false);
-  const StepStats pass = plugin_->stats();
-  StepStats& stats = plugin_->stats();
+  plugin_->stepBuffer().setImpactPass(false);
+  const StepStats pass = plugin_->stepBuffer().stats();
+  StepStats& stats = plugin_->stepBuffer().stats();
   stats = first;
   stats.projected += pass.projected;
   stats.recovering += pass.recovering;

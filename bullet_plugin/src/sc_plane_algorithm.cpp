@@ -2,13 +2,14 @@
 // ScPlaneAlgorithm: the deepest hull corner gives distance and depth; the potential
 // model takes it as the pair's result, the manifold model takes every corner within
 // the breaking threshold.
-#include "smartcollision/bullet/sc_plane_algorithm.h"
+#include "sc_plane_algorithm.h"
 
 #include <algorithm>
 #include <limits>
 
 #include "contact_response.h"
 #include "smartcollision/bullet/plugin.h"
+#include "step_buffer.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
 
 namespace sc::bullet {
@@ -119,7 +120,7 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
     return;
   }
   const PluginSettings& ps = plugin_->settings();
-  StepStats& stats = plugin_->stats();
+  StepStats& stats = plugin_->stepBuffer().stats();
   ++stats.pairs;
   const detail::BodySide target = detail::bodySide(shape_w);
   const detail::BodySide plane_side = detail::bodySide(plane_w);

@@ -66,6 +66,32 @@ TEST(PrimitiveModels, SphereAndCapsuleAreTheirCoresNotTriangles) {
               1e-12);
 }
 
+// A hull edited in place gets a new model, even when its point count and coordinate
+// sums stay the same (two points trade their x: a box turned into a slanted prism).
+TEST(PrimitiveModels, EditedHullGetsANewModel) {
+  BulletWorld w(ContactModel::Potential);
+  btConvexHullShape hull;
+  for (int i = 0; i < 8; ++i)
+    hull.addPoint(btVector3((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f),
+                  false);
+  hull.recalcLocalAabb();
+  ModelPtr box = w.plugin->primitiveModel(&hull);
+  ASSERT_TRUE(box);
+  EXPECT_EQ(w.plugin->primitiveModel(&hull), box);  // unchanged: the cached model
+  btVector3* p = hull.getUnscaledPoints();
+  p[1].setX(0.2f);  // x sum unchanged: +0.5 -> 0.2 on one point, -0.5 -> -0.2 on another
+  p[0].setX(-0.2f);
+  hull.recalcLocalAabb();
+  ModelPtr prism = w.plugin->primitiveModel(&hull);
+  ASSERT_TRUE(prism);
+  EXPECT_NE(prism, box);
+  EXPECT_NEAR(prism->bounds().min.x(), -0.5, 1e-6);
+  double lowest_corner_x = 1.0;  // corner 0 (y = z = -0.5) now at x = -0.2
+  for (const Vec3& v : prism->pieces()[0]->mesh().vertices)
+    if (v.y() < -0.49 && v.z() < -0.49) lowest_corner_x = std::min(lowest_corner_x, v.x());
+  EXPECT_NEAR(lowest_corner_x, -0.2, 1e-3);  // the hull is computed in floats
+}
+
 TEST(PrimitiveDistance, SphereAboveMeshBoxIsCentreHeightMinusRadius) {
   BulletWorld w(ContactModel::Potential, 0.0);
   btRigidBody* ground = addMeshGround(w);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bullet_world.h"
+#include "sc_collision_algorithm.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 

@@ -5,7 +5,6 @@
 #include "smartcollision/bullet/mass_properties.h"
 #include "smartcollision/bullet/plugin.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
-#include "smartcollision/bullet/sc_collision_algorithm.h"
 #include "smartcollision/bullet/sc_dynamics_world.h"
 #include "smartcollision/bullet/settings.h"
 #include "smartcollision/bullet/virtual_coupling.h"

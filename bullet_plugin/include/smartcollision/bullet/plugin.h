@@ -16,6 +16,10 @@
 
 namespace sc::bullet {
 
+namespace detail {
+class StepBuffer;
+}
+
 class Plugin {
  public:
   explicit Plugin(const PluginSettings& settings = {});
@@ -51,37 +55,10 @@ class Plugin {
   /// other shape.
   ModelPtr primitiveModel(const btCollisionShape* shape);
 
-  // Buffer of the direct corrections, filled during collision detection and applied
-  // after it (the rows go to Bullet's solver through the pairs' manifolds).
-  /// Called by ScDynamicsWorld; without a world the algorithm applies them at once.
-  void attachWorld(bool attached) { world_attached_ = attached; }
-  bool worldAttached() const { return world_attached_; }
-  /// Recovery push of a pair first seen deep: an impulse on `body` at `lever` from
-  /// its centre of mass.
-  void addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& impulse);
-  /// Projection of an impact: `body` is moved by `shift` back to the entry side.
-  /// Several projections of one body combine as the largest along each one's
-  /// direction (two supports under a landing body do not lift it twice).
-  void addProjection(btRigidBody* body, const btVector3& shift);
-  void beginStep();
-  /// Applies and clears the buffered impulses and projections.
-  void applyImpulses();
-  /// Set by ScDynamicsWorld around its detection after the integration: only pairs
-  /// that may have a fresh impact (apart at their last query, by less than the bodies
-  /// could have moved since) are queried then; pairs in contact keep their rows.
-  void setImpactPass(bool on) { impact_pass_ = on; }
-  bool impactPass() const { return impact_pass_; }
-  /// Set by ScDynamicsWorld around a dispatch after projections were applied: only
-  /// pairs with a projected body measure their rows again (at the bodies' new poses),
-  /// and nothing is pushed or projected.
-  void setRowsPass(bool on) { rows_pass_ = on; }
-  bool rowsPass() const { return rows_pass_; }
-  /// Bodies moved by the last applyImpulses() (none after beginStep()).
-  bool anyProjected() const { return !projected_.empty(); }
-  bool projected(const btCollisionObject* body) const;
-
-  StepStats& stats() { return stats_; }
-  const StepStats& stats() const { return stats_; }
+  /// What the last collision detection saw.
+  const StepStats& stats() const;
+  /// The state of the current step (internal: ScDynamicsWorld and the algorithms).
+  detail::StepBuffer& stepBuffer() { return *step_; }
 
   /// Create functions owned here; the dispatcher keeps raw pointers to them.
   btCollisionAlgorithmCreateFunc* contactCreateFunc() const;
@@ -90,27 +67,16 @@ class Plugin {
   btCollisionAlgorithmCreateFunc* planeCreateFunc(bool closest_points) const;
 
  private:
-  struct Impulse {
-    btRigidBody* body;
-    btVector3 lever;
-    btVector3 impulse;
-  };
   struct CachedModel {
     ModelPtr model;
-    btVector3 signature;  ///< what the model depends on (see primitiveSignature)
+    std::vector<btScalar> key;  ///< everything the model depends on (see primitiveKey)
   };
   struct CreateFuncs;
 
   PluginSettings settings_;
   std::unordered_map<const btCollisionObject*, ContactSettings> body_settings_;
   std::unordered_map<const btCollisionShape*, CachedModel> models_;
-  std::vector<Impulse> impulses_;
-  std::unordered_map<btRigidBody*, btVector3> projections_;  ///< reused every substep
-  StepStats stats_;
-  bool world_attached_ = false;
-  bool impact_pass_ = false;
-  bool rows_pass_ = false;
-  std::vector<const btCollisionObject*> projected_;
+  std::unique_ptr<detail::StepBuffer> step_;
   int settings_version_ = 0;
   std::unique_ptr<CreateFuncs> create_funcs_;
 };

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// StepBuffer: the plugin's state within one step of the world, shared by
+// ScDynamicsWorld and the algorithms (not installed): the direct corrections
+// gathered during a detection and applied after it, which detection pass is running,
+// and the step's statistics.
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+#include <unordered_map>
+#include <vector>
+
+#include "smartcollision/bullet/step_stats.h"
+
+namespace sc::bullet::detail {
+
+class StepBuffer {
+ public:
+  /// Set by ScDynamicsWorld; without a world the algorithms apply corrections at once.
+  void attachWorld(bool attached) { world_attached_ = attached; }
+  bool worldAttached() const { return world_attached_; }
+
+  /// Recovery push of a pair first seen deep: an impulse on `body` at `lever` from
+  /// its centre of mass.
+  void addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& impulse);
+  /// Projection of an impact: `body` is moved by `shift` back to the entry side.
+  /// Several projections of one body combine as the largest along each one's
+  /// direction (two supports under a landing body do not lift it twice).
+  void addProjection(btRigidBody* body, const btVector3& shift);
+  /// Starts a detection: nothing buffered, nothing projected, statistics zero.
+  void begin();
+  /// Applies and clears the buffered impulses and projections.
+  void apply();
+
+  /// The detection after the integration: only pairs that may have a fresh impact
+  /// (apart at their last query, by less than the bodies could have moved since) are
+  /// queried; pairs in contact keep their rows.
+  void setImpactPass(bool on) { impact_pass_ = on; }
+  bool impactPass() const { return impact_pass_; }
+  /// The dispatch after projections: only pairs with a projected body measure their
+  /// rows again (at its new pose), and nothing is pushed or projected.
+  void setRowsPass(bool on) { rows_pass_ = on; }
+  bool rowsPass() const { return rows_pass_; }
+  /// Bodies moved by the last apply() (none after begin()).
+  bool anyProjected() const { return !projected_.empty(); }
+  bool projected(const btCollisionObject* body) const;
+
+  StepStats& stats() { return stats_; }
+  const StepStats& stats() const { return stats_; }
+
+ private:
+  struct Impulse {
+    btRigidBody* body;
+    btVector3 lever;
+    btVector3 impulse;
+  };
+  std::vector<Impulse> impulses_;
+  std::unordered_map<btRigidBody*, btVector3> projections_;  ///< reused every detection
+  std::vector<const btCollisionObject*> projected_;
+  StepStats stats_;
+  bool world_attached_ = false;
+  bool impact_pass_ = false;
+  bool rows_pass_ = false;
+};
+
+}  // namespace sc::bullet::detail

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <utility>
 
+#include "../common/cli.h"
+
 namespace sc::demo::haptic {
 namespace {
 

@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "metrics.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <cstdio>
+
+#include "../common/cli.h"
 
 namespace sc::demo::haptic {
 
@@ -17,21 +16,6 @@ double PeriodHistogram::percentile(double p) const {
     if (seen > rank) return std::min(max_, (double(i) + 0.5) * 1e-6);
   }
   return max_;
-}
-
-long residentKb() {
-  long pages = 0, resident = 0;
-  FILE* f = std::fopen("/proc/self/statm", "r");
-  if (f == nullptr) return 0;
-  if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
-  std::fclose(f);
-  return resident * (sysconf(_SC_PAGESIZE) / 1024);
-}
-
-long peakResidentKb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss;
 }
 
 bool finite(const sc::bullet::BodyState& s) {

@@ -36,9 +36,6 @@ class PeriodHistogram {
   double max_ = 0.0;
 };
 
-/// Resident set size now [kB] (/proc/self/statm), 0 when unavailable.
-long residentKb();
-long peakResidentKb();
 bool finite(const sc::bullet::BodyState& s);
 bool finite(const sc::bullet::CouplingWrench& w);
 /// Kinetic energy of a body [J] (translation + rotation about its principal axes).

@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "../common/cli.h"
-#include "../common/off_mesh.h"
+#include "sc_support/off_mesh.h"
 
 namespace sc::demo::haptic {
 namespace {
@@ -86,16 +86,6 @@ sc::MeshData holedBlock(double outer, double hole, double height, double floor) 
     addFacing(m, 12, 13, 14, Vec3(0, -1, 0));  // outer bottom
     addFacing(m, 12, 14, 15, Vec3(0, -1, 0));
   }
-  return m;
-}
-
-/// Scales a mesh so that its largest AABB extent is `size`, centred on its box.
-sc::MeshData normalised(sc::MeshData m, double size) {
-  sc::Aabb box;
-  for (const Vec3& v : m.vertices) box.extend(v);
-  const double extent = (box.max - box.min).maxCoeff();
-  const Vec3 c = 0.5 * (box.min + box.max);
-  for (Vec3& v : m.vertices) v = (v - c) * (size / (extent > 0 ? extent : 1.0));
   return m;
 }
 
@@ -208,43 +198,47 @@ void HapticScene::buildCommon() {
   cube_mesh_ = drawMeshOf(*cube);
 }
 
-// Peg scene: block 200 x 80 x 200 mm with a 50 mm square through-hole, top at
-// y = 80 mm; peg 46 x 120 x 46 mm, 0.5 kg.
-void HapticScene::buildPeg() {
-  buildCommon();
-  hole_half_ = 0.025;
-  block_top_ = 0.08;
+/// The fixed block: half width 100 mm, a square hole of half width `hole_half` along y
+/// from its top at `top`, through (`floor` 0) or a pocket above a floor that thick.
+void HapticScene::addBlock(double hole_half, double top, double floor, const char* what) {
+  hole_half_ = hole_half;
+  block_top_ = top;
   auto block =
-      makeShape(holedBlock(0.1, hole_half_, block_top_, 0.0), sc::ModelKind::ClosedPolyhedron);
-  if (!block) fail("holed block: not a valid closed polyhedron");
+      makeShape(holedBlock(0.1, hole_half_, block_top_, floor), sc::ModelKind::ClosedPolyhedron);
+  if (!block) fail(std::string(what) + ": not a valid closed polyhedron");
   fixed_ = addRigid(*block, 0.0, btTransform::getIdentity());
   fixed_mesh_ = drawMeshOf(*block);
   fixed_triangles_ = block->indices().size() / 3;
+}
+
+/// The held tool, 0.5 kg, its mesh frame at `home`.
+void HapticScene::addTool(const sc::bullet::ScBulletShape& shape, const Vec3& home) {
+  tool_home_ = home;
+  const btVector3 at(btScalar(home.x()), btScalar(home.y()), btScalar(home.z()));
+  setTool(addRigid(shape, 0.5, btTransform(btQuaternion::getIdentity(), at)), shape);
+  tool_mesh_ = drawMeshOf(shape);
+  tool_triangles_ = shape.indices().size() / 3;
+}
+
+// Peg scene: block 200 x 80 x 200 mm with a 50 mm square through-hole, top at
+// y = 80 mm; peg 46 x 120 x 46 mm.
+void HapticScene::buildPeg() {
+  buildCommon();
+  addBlock(0.025, 0.08, 0.0, "holed block");
   tool_half_ = Vec3(0.023, 0.06, 0.023);
   auto peg = makeShape(boxMesh(tool_half_), sc::ModelKind::ClosedPolyhedron);
-  tool_home_ = Vec3(0, 0.17, 0);
-  setTool(addRigid(*peg, 0.5, btTransform(btQuaternion::getIdentity(), btVector3(0, 0.17f, 0))),
-          *peg);
-  tool_mesh_ = drawMeshOf(*peg);
-  tool_triangles_ = peg->indices().size() / 3;
+  addTool(*peg, Vec3(0, 0.17, 0));
 }
 
 // Cavity scene: a cup 200 x 120 x 200 mm with a 140 mm square pocket 80 mm deep;
-// the bunny (bunny00.off, 75k triangles) scaled to 100 mm, 0.5 kg.
+// the bunny (bunny00.off, 75k triangles) scaled to 100 mm.
 void HapticScene::buildCavity() {
   buildCommon();
-  hole_half_ = 0.07;
-  block_top_ = 0.12;
-  auto cup =
-      makeShape(holedBlock(0.1, hole_half_, block_top_, 0.04), sc::ModelKind::ClosedPolyhedron);
-  if (!cup) fail("cup: not a valid closed polyhedron");
-  fixed_ = addRigid(*cup, 0.0, btTransform::getIdentity());
-  fixed_mesh_ = drawMeshOf(*cup);
-  fixed_triangles_ = cup->indices().size() / 3;
+  addBlock(0.07, 0.12, 0.04, "cup");
   const std::string bunny_file = demoMesh("bunny00.off");
-  sc::MeshData bunny = readOff(bunny_file);
+  sc::MeshData bunny = sc::support::readOffOrEmpty(bunny_file);
   if (bunny.triangles.empty()) fail("cannot read " + bunny_file + " (run scripts/setup.sh)");
-  bunny = normalised(std::move(bunny), 0.1);
+  bunny = sc::support::fitToSize(std::move(bunny), 0.1);
   auto tool = makeShape(bunny, sc::ModelKind::ClosedPolyhedron);
   if (!tool) tool = makeShape(bunny, sc::ModelKind::TriangleSoup);
   if (!tool) fail("bunny: cannot build the model");
@@ -253,11 +247,7 @@ void HapticScene::buildCavity() {
   tool_half_ = Vec3(0.5 * double(hi.x() - lo.x()), 0.5 * double(hi.y() - lo.y()),
                     0.5 * double(hi.z() - lo.z())) -
                Vec3::Constant(tool->aabbMargin());
-  tool_home_ = Vec3(0, 0.2, 0);
-  setTool(addRigid(*tool, 0.5, btTransform(btQuaternion::getIdentity(), btVector3(0, 0.2f, 0))),
-          *tool);
-  tool_mesh_ = drawMeshOf(*tool);
-  tool_triangles_ = tool->indices().size() / 3;
+  addTool(*tool, Vec3(0, 0.2, 0));
   tool_color_[0] = 0.85f;
   tool_color_[1] = 0.7f;
   tool_color_[2] = 0.45f;

@@ -55,6 +55,8 @@ class HapticScene {
   btRigidBody* addRigid(const sc::bullet::ScBulletShape& shape, double mass,
                         const btTransform& world_from_mesh);
   void setTool(btRigidBody* body, const sc::bullet::ScBulletShape& shape);
+  void addBlock(double hole_half, double top, double floor, const char* what);
+  void addTool(const sc::bullet::ScBulletShape& shape, const Vec3& home);
   void buildCommon();
   void buildPeg();
   void buildCavity();

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// What the Google Benchmark programs share: their main with one option of its own,
+// What the Google Benchmark programs share: their main, with one option of its own,
 // and the clocks they time queries with.
 #pragma once
 
@@ -26,11 +26,13 @@ inline double threadCpuSeconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-/// Runs the registered benchmarks with the arguments except `option` (e.g. "--csv="),
-/// whose value it returns in `value` ("" when absent). False on an argument Google
-/// Benchmark does not know.
-inline bool runBenchmarks(int argc, char** argv, const char* option, std::string& value) {
+/// The main of a benchmark program: runs the registered benchmarks with the arguments
+/// except `option` (e.g. "--csv="), then `write(value)` when the option was given.
+/// 1 on an argument Google Benchmark does not know, else 0.
+template <class Write>
+int benchmarkMain(int argc, char** argv, const char* option, Write write) {
   const std::size_t n = std::strlen(option);
+  std::string value;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
     if (std::strncmp(argv[i], option, n) == 0)
@@ -40,10 +42,11 @@ inline bool runBenchmarks(int argc, char** argv, const char* option, std::string
   }
   int count = static_cast<int>(args.size());
   benchmark::Initialize(&count, args.data());
-  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return false;
+  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
-  return true;
+  if (!value.empty()) write(value);
+  return 0;
 }
 
 }  // namespace sc_bench

@@ -433,9 +433,6 @@ void writeCsv(const std::string& path) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::string csv;  // --csv=<file> is ours; the rest goes to Google Benchmark.
-  if (!sc_bench::runBenchmarks(argc, argv, "--csv=", csv)) return 1;
-  if (!csv.empty()) writeCsv(csv);
-  return 0;
+int main(int argc, char** argv) {  // --csv=<file> is ours; the rest is Google Benchmark's
+  return sc_bench::benchmarkMain(argc, argv, "--csv=", writeCsv);
 }

@@ -679,9 +679,6 @@ void writeCsvs(const std::string& dir) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::string csv_dir;  // --csv-dir=<dir> is ours; the rest goes to Google Benchmark.
-  if (!sc_bench::runBenchmarks(argc, argv, "--csv-dir=", csv_dir)) return 1;
-  if (!csv_dir.empty()) writeCsvs(csv_dir);
-  return 0;
+int main(int argc, char** argv) {  // --csv-dir=<dir> is ours; the rest is Google Benchmark's
+  return sc_bench::benchmarkMain(argc, argv, "--csv-dir=", writeCsvs);
 }

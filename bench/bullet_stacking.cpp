@@ -26,8 +26,9 @@
 #include <vector>
 
 #include "bullet_shapes.h"
-#include "off_mesh.h"
-#include "support/sample_meshes.h"
+#include "meshes.h"
+#include "sc_support/sample_meshes.h"
+#include "sc_support/stats.h"
 
 namespace {
 
@@ -367,12 +368,6 @@ void finish(const World& w, const Scene& s, Figures& f) {
   }
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
-}
-
 double mean(const std::vector<double>& v) {
   double s = 0.0;
   for (double x : v) s += x;
@@ -429,11 +424,11 @@ void runScene(const Scene& s, int hz, const Options& opt, FILE* csv, std::vector
         f.stands ? (s.pile() ? "inside" : "stands") : (s.pile() ? "ESCAPED" : "FALLS");
     std::printf("%-9s %4d %-17s %8.3f %8.3f %8.3f %9.2f %9.2f %9.2f %9.2e %7.2f %9.3f %s\n",
                 s.name.c_str(), hz, sc_bench::modelName(models[m]), mean(f.step_ms),
-                percentile(f.step_ms, 0.95), cpu_ms, 1e3 * f.drift, 1e3 * f.max_overlap,
+                sc::support::quantile(f.step_ms, 0.95), cpu_ms, 1e3 * f.drift, 1e3 * f.max_overlap,
                 1e3 * f.settled_overlap, rest, f.max_spin, f.energy_rise, verdict);
     std::fprintf(csv, "%s,%d,%d,%s,%d,%d,%.5f,%.5f,%.5f,%.3f,%.3f,%.3f,%.4e,%.3f,%.4f,%d\n",
                  s.name.c_str(), s.id, hz, sc_bench::modelName(models[m]), int(models[m]), steps,
-                 mean(f.step_ms), percentile(f.step_ms, 0.95), cpu_ms, 1e3 * f.drift,
+                 mean(f.step_ms), sc::support::quantile(f.step_ms, 0.95), cpu_ms, 1e3 * f.drift,
                  1e3 * f.max_overlap, 1e3 * f.settled_overlap, rest, f.max_spin, f.energy_rise,
                  f.stands ? 1 : 0);
     std::fflush(csv);
@@ -585,7 +580,7 @@ FILE* openCsv(const std::string& dir, const char* name, const char* header) {
 sc::MeshData loadMesh(const char* name) {
   sc::MeshData mesh = sc_bench::loadOff(name);
   if (mesh.triangles.empty()) std::exit(1);
-  mesh = sc_bench::unitSize(std::move(mesh));
+  mesh = sc::support::fitToSize(std::move(mesh), 1.0);
   for (sc::Vec3& v : mesh.vertices) v *= kSize;
   return mesh;
 }

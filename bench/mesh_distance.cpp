@@ -19,7 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "off_mesh.h"
+#include "harness.h"
+#include "meshes.h"
+#include "sc_support/csv.h"
+#include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
 
 #if SC_BENCH_HAVE_FCL
@@ -30,30 +33,17 @@ namespace {
 
 using sc::Quat;
 using sc::Vec3;
-using Clock = std::chrono::steady_clock;
+using sc::support::quantile;
+using sc::support::randomDirection;
+using sc::support::randomRotation;
+using sc_bench::Clock;
+using sc_bench::seconds;
+using sc_bench::threadCpuSeconds;
 
 constexpr int kTrajectorySteps = 2000;
 constexpr int kBlock = 100;  // ours and FCL alternate over blocks of this many steps
 constexpr int kColdPoses = 200;
 constexpr double kStepAngle = 0.003;  // radians per step, of the direction and of the body
-
-double seconds(Clock::time_point t0, Clock::time_point t1) {
-  return std::chrono::duration<double>(t1 - t0).count();
-}
-
-/// CPU time of this thread: the cost of a query, robust to the machine's other load.
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const size_t i = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())));
-  return v[i];
-}
 
 /// One CSV row: section, case, quantity, value, unit.
 struct Row {
@@ -87,7 +77,7 @@ const Loaded* load(const std::string& name) {
   sc::MeshData raw = sc_bench::loadOff(name);
   if (!raw.triangles.empty()) {
     l = std::make_unique<Loaded>();
-    l->mesh = sc_bench::unitSize(std::move(raw));
+    l->mesh = sc::support::fitToSize(std::move(raw), 1.0);
     auto piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, l->mesh);
     if (!piece.hasValue()) {
       std::fprintf(stderr, "bench: %s rejected: %s\n", name.c_str(),
@@ -170,16 +160,6 @@ struct Pair {
   }
 #endif
 };
-
-Quat randomRotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
-}
-
-Vec3 randomDirection(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(rng), n(rng), n(rng)).normalized();
-}
 
 const char* const kPairs[][2] = {{"bunny00", "bunny00"}, {"armadillo", "bunny00"}};
 
@@ -389,7 +369,7 @@ void BM_Preprocess(benchmark::State& state) {
     state.SkipWithError("mesh not found");
     return;
   }
-  mesh = sc_bench::unitSize(std::move(mesh));
+  mesh = sc::support::fitToSize(std::move(mesh), 1.0);
   namespace fs = std::filesystem;
   const fs::path cache = fs::temp_directory_path() / ("sc_bench_" + name + ".scc");
   for (auto _ : state) {
@@ -444,36 +424,15 @@ BENCHMARK(BM_ColdRandom)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
-void writeCsv(const char* path) {
-  std::FILE* f = std::fopen(path, "w");
-  if (!f) {
-    std::fprintf(stderr, "cannot write %s\n", path);
-    return;
-  }
-  std::fprintf(f, "section,case,quantity,value,unit\n");
+void writeCsv(const std::string& path) {
+  sc::support::CsvFile f(path, "section,case,quantity,value,unit");
   for (const Row& r : g_rows)
-    std::fprintf(f, "%s,%s,%s,%.6g,%s\n", r.section.c_str(), r.name.c_str(), r.quantity.c_str(),
-                 r.value, r.unit.c_str());
-  std::fclose(f);
+    f.row("%s,%s,%s,%.6g,%s", r.section.c_str(), r.name.c_str(), r.quantity.c_str(), r.value,
+          r.unit.c_str());
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  // --csv=<file> is ours; the rest goes to Google Benchmark.
-  const char* csv = nullptr;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--csv=", 6) == 0)
-      csv = argv[i] + 6;
-    else
-      args.push_back(argv[i]);
-  }
-  int count = static_cast<int>(args.size());
-  benchmark::Initialize(&count, args.data());
-  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (csv) writeCsv(csv);
-  return 0;
+int main(int argc, char** argv) {  // --csv=<file> is ours; the rest is Google Benchmark's
+  return sc_bench::benchmarkMain(argc, argv, "--csv=", writeCsv);
 }

@@ -20,7 +20,10 @@
 #include <utility>
 #include <vector>
 
-#include "off_mesh.h"
+#include "harness.h"
+#include "meshes.h"
+#include "sc_support/csv.h"
+#include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
 
 #if SC_BENCH_HAVE_CCD
@@ -35,35 +38,10 @@ namespace {
 
 using sc::Quat;
 using sc::Vec3;
-using Clock = std::chrono::steady_clock;
-
-double seconds(Clock::time_point t0, Clock::time_point t1) {
-  return std::chrono::duration<double>(t1 - t0).count();
-}
-
-/// CPU time of this thread: what an update costs, whatever else the machine runs.
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const size_t i = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())));
-  return v[i];
-}
-
-Quat randomRotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
-}
-
-Vec3 randomDirection(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(rng), n(rng), n(rng)).normalized();
-}
+using sc::support::quantile;
+using sc::support::randomDirection;
+using sc::support::randomRotation;
+using sc_bench::Clock;
 
 sc::ModelPtr closedModel(const sc::MeshData& mesh) {
   auto piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, mesh);
@@ -115,7 +93,7 @@ const LoadedMesh* loadMesh(const std::string& name) {
   sc::MeshData raw = sc_bench::loadOff(name);
   if (!raw.triangles.empty()) {
     l = std::make_unique<LoadedMesh>();
-    l->mesh = sc_bench::unitSize(std::move(raw));
+    l->mesh = sc::support::fitToSize(std::move(raw), 1.0);
     l->model = closedModel(l->mesh);
     for (const Vec3& v : l->mesh.vertices) l->radius = std::max(l->radius, v.norm());
     if (!l->model) l.reset();
@@ -219,13 +197,13 @@ void BM_HapticPath(benchmark::State& state) {
     sc::PairTracker tracker;
     Vec3 previous_tpdv = Vec3::Zero();
     for (int k = 0; k < kHapticSteps; ++k) {
-      const double c0 = threadCpuSeconds();
+      const double c0 = sc_bench::threadCpuSeconds();
       const auto t0 = Clock::now();
       const sc::DirectedResult r =
           updateOneWay(tracker, part_a, path[k], part_b, opponent, settings);
       const auto t1 = Clock::now();
-      const double c1 = threadCpuSeconds();
-      wall.push_back(seconds(t0, t1));
+      const double c1 = sc_bench::threadCpuSeconds();
+      wall.push_back(sc_bench::seconds(t0, t1));
       cpu.push_back(c1 - c0);
       if (r.code != sc::ErrorCode::Ok) ++row.not_ok;
       if (r.penetrating()) ++row.penetrating;
@@ -494,7 +472,7 @@ void BM_OursConvex(benchmark::State& state) {
         updateOneWay(tracker, pa, free, pb, opponent, settings);
         const auto t0 = Clock::now();
         r = updateOneWay(tracker, pa, deep, pb, opponent, settings);
-        best = std::min(best, seconds(t0, Clock::now()));
+        best = std::min(best, sc_bench::seconds(t0, Clock::now()));
       }
       total += best;
       times.push_back(best);
@@ -573,7 +551,7 @@ void BM_CcdConvex(benchmark::State& state) {
         const auto t0 = Clock::now();
         status = mpr ? ccdMPRPenetration(&a, &b, &ccd, &depth, &dir, &pos)
                      : ccdGJKPenetration(&a, &b, &ccd, &depth, &dir, &pos);
-        best = std::min(best, seconds(t0, Clock::now()));
+        best = std::min(best, sc_bench::seconds(t0, Clock::now()));
       }
       total += best;
       times.push_back(best);
@@ -626,7 +604,7 @@ void BM_BulletConvex(benchmark::State& state) {
       for (int k = 0; k < kRepeats; ++k) {
         const auto t0 = Clock::now();
         ok = btGjkEpaSolver2::Penetration(ha.get(), ta, hb.get(), tb, btVector3(1, 0, 0), result);
-        best = std::min(best, seconds(t0, Clock::now()));
+        best = std::min(best, sc_bench::seconds(t0, Clock::now()));
       }
       total += best;
       times.push_back(best);
@@ -673,59 +651,34 @@ BENCHMARK(BM_BulletConvex)
 
 void writeCsvs(const std::string& dir) {
   // A file whose benchmarks were filtered out is left as it is.
-  const std::string haptic = dir + "/penetration_haptic.csv";
-  std::FILE* f = g_haptic.empty() ? nullptr : std::fopen(haptic.c_str(), "w");
-  if (f) {
-    std::fprintf(
-        f,
-        "pair,mode,steps,penetrating,not_ok,median_us,p99_us,max_us,cpu_median_us,cpu_p99_us,"
-        "cpu_max_us,max_step,delta_max,max_tpdv,max_tpdv_jump\n");
+  if (!g_haptic.empty()) {
+    sc::support::CsvFile f(dir + "/penetration_haptic.csv",
+                           "pair,mode,steps,penetrating,not_ok,median_us,p99_us,max_us,"
+                           "cpu_median_us,cpu_p99_us,cpu_max_us,max_step,delta_max,max_tpdv,"
+                           "max_tpdv_jump");
     for (const HapticRow& r : g_haptic)
-      std::fprintf(f, "%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.3g,%.3g,%.4g,%.4g\n",
-                   r.pair.c_str(), r.mode.c_str(), r.steps, r.penetrating, r.not_ok, r.median_us,
-                   r.p99_us, r.max_us, r.cpu_median_us, r.cpu_p99_us, r.cpu_max_us, r.max_step,
-                   r.delta_max, r.max_tpdv, r.max_tpdv_jump);
-    std::fclose(f);
+      f.row("%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.3g,%.3g,%.4g,%.4g", r.pair.c_str(),
+            r.mode.c_str(), r.steps, r.penetrating, r.not_ok, r.median_us, r.p99_us, r.max_us,
+            r.cpu_median_us, r.cpu_p99_us, r.cpu_max_us, r.max_step, r.delta_max, r.max_tpdv,
+            r.max_tpdv_jump);
   }
-  const std::string steps = dir + "/penetration_haptic_steps.csv";
-  f = g_haptic_steps.empty() ? nullptr : std::fopen(steps.c_str(), "w");
-  if (f) {
-    std::fprintf(f, "step,wall_us,cpu_us,tpdv\n");
-    for (const auto& s : g_haptic_steps)
-      std::fprintf(f, "%d,%.2f,%.2f,%.5g\n", int(s[0]), s[1], s[2], s[3]);
-    std::fclose(f);
+  if (!g_haptic_steps.empty()) {
+    sc::support::CsvFile f(dir + "/penetration_haptic_steps.csv", "step,wall_us,cpu_us,tpdv");
+    for (const auto& s : g_haptic_steps) f.row("%d,%.2f,%.2f,%.5g", int(s[0]), s[1], s[2], s[3]);
   }
-  const std::string sweep = dir + "/penetration_sweep.csv";
-  f = g_sweep.empty() ? nullptr : std::fopen(sweep.c_str(), "w");
-  if (f) {
-    std::fprintf(f,
-                 "method,shapes,tolerance,iterations,cases,failures,median_us,median_err,p90_err,"
-                 "max_err,parameters,over_1e-6\n");
+  if (!g_sweep.empty()) {
+    sc::support::CsvFile f(dir + "/penetration_sweep.csv",
+                           "method,shapes,tolerance,iterations,cases,failures,median_us,"
+                           "median_err,p90_err,max_err,parameters,over_1e-6");
     for (const SweepRow& r : g_sweep)
-      std::fprintf(f, "%s,%s,%.0e,%d,%d,%d,%.3f,%.3g,%.3g,%.3g,%s,%d\n", r.method.c_str(),
-                   r.shapes.c_str(), r.tolerance, r.iterations, r.cases, r.failures, r.median_us,
-                   r.median_err, r.p90_err, r.max_err, r.parameters.c_str(), r.over_1e6);
-    std::fclose(f);
+      f.row("%s,%s,%.0e,%d,%d,%d,%.3f,%.3g,%.3g,%.3g,%s,%d", r.method.c_str(), r.shapes.c_str(),
+            r.tolerance, r.iterations, r.cases, r.failures, r.median_us, r.median_err, r.p90_err,
+            r.max_err, r.parameters.c_str(), r.over_1e6);
   }
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  // --csv-dir=<dir> is ours; the rest goes to Google Benchmark.
-  std::string csv_dir;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--csv-dir=", 10) == 0)
-      csv_dir = argv[i] + 10;
-    else
-      args.push_back(argv[i]);
-  }
-  int count = static_cast<int>(args.size());
-  benchmark::Initialize(&count, args.data());
-  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (!csv_dir.empty()) writeCsvs(csv_dir);
-  return 0;
+int main(int argc, char** argv) {  // --csv-dir=<dir> is ours; the rest is Google Benchmark's
+  return sc_bench::benchmarkMain(argc, argv, "--csv-dir=", writeCsvs);
 }

@@ -19,11 +19,15 @@
 #include <utility>
 #include <vector>
 
+#include "harness.h"
+#include "sc_support/csv.h"
+#include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
 
 namespace {
 
 using sc::Vec3;
+using sc::support::randomRotation;
 
 constexpr double kDensity = 0.05;        // groups per unit volume (objects are ~0.7 across)
 constexpr double kSparseDensity = 0.002;  // hardly any close pair: the broadphase alone
@@ -88,11 +92,6 @@ struct Library {
 const Library& library() {
   static const Library lib;
   return lib;
-}
-
-sc::Quat randomRotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return sc::Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
 }
 
 /// n groups of one object each on a random walk in a cube sized for kDensity.
@@ -234,20 +233,16 @@ BENCHMARK(BM_SparseTree)
     ->MinTime(1.0);
 BENCHMARK(BM_SparseBruteForce)->Args({1000, 1})->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
-void writeCsv(const char* path) {
-  std::FILE* f = std::fopen(path, "w");
-  if (!f) {
-    std::fprintf(stderr, "cannot write %s\n", path);
-    return;
-  }
-  std::fprintf(f, "scene,broadphase,threads,groups,wall_ms,cpu_ms,pairs,cpu_us_per_group,frames\n");
+void writeCsv(const std::string& path) {
+  sc::support::CsvFile f(
+      path, "scene,broadphase,threads,groups,wall_ms,cpu_ms,pairs,cpu_us_per_group,frames");
+  if (!f.ok()) return;
   for (const auto& [key, row] : g_rows) {
     const auto& [scene, name, threads, n] = key;
-    std::fprintf(f, "%s,%s,%d,%d,%.4f,%.4f,%.1f,%.3f,%ld\n", scene.c_str(), name.c_str(), threads, n,
-                 row.ms_per_update, row.cpu_ms_per_update, row.pairs_per_update,
-                 1e3 * row.cpu_ms_per_update / n, row.frames);
+    f.row("%s,%s,%d,%d,%.4f,%.4f,%.1f,%.3f,%ld", scene.c_str(), name.c_str(), threads, n,
+          row.ms_per_update, row.cpu_ms_per_update, row.pairs_per_update,
+          1e3 * row.cpu_ms_per_update / n, row.frames);
   }
-  std::fclose(f);
   for (const char* scene : {"dense", "sparse"}) {
     const auto tree = g_rows.find({scene, "tree", 1, 1000});
     const auto brute = g_rows.find({scene, "brute_force", 1, 1000});
@@ -263,21 +258,6 @@ void writeCsv(const char* path) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  // --csv=<file> is ours; the rest goes to Google Benchmark.
-  const char* csv = nullptr;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--csv=", 6) == 0)
-      csv = argv[i] + 6;
-    else
-      args.push_back(argv[i]);
-  }
-  int count = static_cast<int>(args.size());
-  benchmark::Initialize(&count, args.data());
-  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (csv) writeCsv(csv);
-  return 0;
+int main(int argc, char** argv) {  // --csv=<file> is ours; the rest is Google Benchmark's
+  return sc_bench::benchmarkMain(argc, argv, "--csv=", writeCsv);
 }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "sc_support/csv.h"
 #include "stability_common.h"
 #include "stability_dynamics.h"
 #include "stability_pairs.h"
@@ -23,13 +24,6 @@ namespace {
 
 using stab::Cell;
 
-std::string csvField(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 std::string number(double x) {
   if (std::isnan(x)) return "";
   char buf[32];
@@ -38,11 +32,12 @@ std::string number(double x) {
 }
 
 void writeCsv(const std::string& path, const std::vector<Cell>& cells) {
-  std::ofstream out(path);
-  out << "row,column,outcome,value,error,note\n";
+  using sc::support::csvField;
+  sc::support::CsvFile f(path, "row,column,outcome,value,error,note");
   for (const Cell& c : cells)
-    out << csvField(c.row) << ',' << csvField(c.column) << ',' << csvField(c.outcome) << ','
-        << number(c.value) << ',' << number(c.error) << ',' << csvField(c.note) << '\n';
+    f.row("%s,%s,%s,%s,%s,%s", csvField(c.row).c_str(), csvField(c.column).c_str(),
+          csvField(c.outcome).c_str(), number(c.value).c_str(), number(c.error).c_str(),
+          csvField(c.note).c_str());
 }
 
 /// What a table cell shows: the outcome and its figure (n/a with its reason).

@@ -20,7 +20,9 @@
 #include <utility>
 #include <vector>
 
-#include "off_mesh.h"
+#include "meshes.h"
+#include "sc_support/csv.h"
+#include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
 
 #if SC_BENCH_HAVE_FCL
@@ -31,15 +33,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using sc::Vec3;
+using sc::support::quantile;
+using sc::support::QuantileRank;
 
 double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::lround(q * double(v.size() - 1)))];
 }
 
 /// Splits every triangle in four at its edge midpoints (shared between neighbours, so
@@ -166,8 +164,8 @@ class Bench {
       const double d_now = d.code == sc::ErrorCode::Ok ? d.distance : -1.0;
       s -= std::clamp(d_now - gap, -0.005, 0.005);
     }
-    row_.ours_distance_us = quantile(times, 0.5);
-    row_.ours_distance_p99_us = quantile(times, 0.99);
+    row_.ours_distance_us = quantile(times, 0.5, QuantileRank::Nearest);
+    row_.ours_distance_p99_us = quantile(times, 0.99, QuantileRank::Nearest);
     fclOnPath(path);
   }
 
@@ -187,8 +185,8 @@ class Bench {
       query(tracker, {r0, t});
       if (k > 0) times.push_back(1e6 * secondsSince(t0));
     }
-    row_.ours_depth_us = quantile(times, 0.5);
-    row_.ours_depth_p99_us = quantile(times, 0.99);
+    row_.ours_depth_us = quantile(times, 0.5, QuantileRank::Nearest);
+    row_.ours_depth_p99_us = quantile(times, 0.99, QuantileRank::Nearest);
   }
 
  private:
@@ -208,8 +206,8 @@ class Bench {
         row_.max_rel_diff = std::max(row_.max_rel_diff,
                                      std::abs(distances_[k] - result.min_distance) / result.min_distance);
     }
-    row_.fcl_distance_us = quantile(times, 0.5);
-    row_.fcl_distance_p99_us = quantile(times, 0.99);
+    row_.fcl_distance_us = quantile(times, 0.5, QuantileRank::Nearest);
+    row_.fcl_distance_p99_us = quantile(times, 0.99, QuantileRank::Nearest);
 #endif
   }
 
@@ -241,19 +239,16 @@ Options parse(int argc, char** argv) {
 }
 
 void writeCsv(const std::string& path, const std::vector<Row>& rows) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) {
-    std::fprintf(stderr, "triangle_scaling: cannot write %s\n", path.c_str());
-    std::exit(1);
-  }
-  std::fprintf(f, "series,model,triangles,preprocess_s,fcl_build_s,ours_distance_us,ours_distance_p99_us,"
-                  "fcl_distance_us,fcl_distance_p99_us,ours_depth_us,ours_depth_p99_us,max_rel_diff_vs_fcl\n");
+  sc::support::CsvFile f(path,
+                         "series,model,triangles,preprocess_s,fcl_build_s,ours_distance_us,"
+                         "ours_distance_p99_us,fcl_distance_us,fcl_distance_p99_us,ours_depth_us,"
+                         "ours_depth_p99_us,max_rel_diff_vs_fcl");
+  if (!f.ok()) std::exit(1);
   for (const Row& r : rows)
-    std::fprintf(f, "%s,%s,%d,%.4f,%.4f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2e\n", r.series.c_str(),
-                 r.model.c_str(), r.triangles, r.preprocess_s, r.fcl_build_s, r.ours_distance_us,
-                 r.ours_distance_p99_us, r.fcl_distance_us, r.fcl_distance_p99_us, r.ours_depth_us,
-                 r.ours_depth_p99_us, r.max_rel_diff);
-  std::fclose(f);
+    f.row("%s,%s,%d,%.4f,%.4f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2e", r.series.c_str(),
+          r.model.c_str(), r.triangles, r.preprocess_s, r.fcl_build_s, r.ours_distance_us,
+          r.ours_distance_p99_us, r.fcl_distance_us, r.fcl_distance_p99_us, r.ours_depth_us,
+          r.ours_depth_p99_us, r.max_rel_diff);
 }
 
 /// The models of each series, up to `max_triangles`, in increasing size.
@@ -265,7 +260,7 @@ std::vector<std::pair<Row, sc::MeshData>> models(int max_triangles) {
     r.series = series;
     r.model = name;
     r.triangles = static_cast<int>(m.triangles.size());
-    out.emplace_back(r, sc_bench::unitSize(m));
+    out.emplace_back(r, sc::support::fitToSize(m, 1.0));
   };
   sc::MeshData sphere = icosahedron();
   for (int level = 1; level <= 7; ++level) {

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 # Fails when a core file includes a higher layer (geometry <- preprocess <- query
-# <- penetration <- scene <- api), when core includes Bullet, or when code outside
-# core reaches into core/src.
+# <- penetration <- scene <- api), when core includes Bullet, when code outside
+# core reaches into core/src, or when support/ (shared by tests, demos and bench)
+# includes one of its users' headers or the Bullet plugin's.
 set(layers geometry preprocess query penetration scene api)
 set(errors "")
 list(LENGTH layers n)
@@ -22,22 +23,28 @@ foreach(i RANGE ${last})
     endforeach()
   endforeach()
 endforeach()
-file(GLOB_RECURSE core_files ${SOURCE_DIR}/core/*.h ${SOURCE_DIR}/core/*.cpp)
-foreach(f IN LISTS core_files)
-  file(STRINGS ${f} bullet REGEX "^#include [<\"](btBullet|BulletDynamics|BulletCollision)")
-  if(bullet)
-    string(APPEND errors "${f}: core includes Bullet: ${bullet}\n")
-  endif()
-endforeach()
-foreach(dir bullet_plugin demos bench python tests/conformance tests/scene tests/install)
-  file(GLOB_RECURSE files ${SOURCE_DIR}/${dir}/*.h ${SOURCE_DIR}/${dir}/*.cpp)
-  foreach(f IN LISTS files)
-    file(STRINGS ${f} inner REGEX "^#include \"(geometry|preprocess|query|penetration|scene|api)/")
-    if(inner)
-      string(APPEND errors "${f}: reaches into core internals: ${inner}\n")
-    endif()
+# forbid(<dir>... REGEX <include regex> WHAT <message>): every .h/.cpp under the
+# directories whose includes match the regex is an error.
+function(forbid)
+  cmake_parse_arguments(arg "" "REGEX;WHAT" "" ${ARGN})
+  foreach(dir IN LISTS arg_UNPARSED_ARGUMENTS)
+    file(GLOB_RECURSE files ${SOURCE_DIR}/${dir}/*.h ${SOURCE_DIR}/${dir}/*.cpp)
+    foreach(f IN LISTS files)
+      file(STRINGS ${f} found REGEX "${arg_REGEX}")
+      if(found)
+        string(APPEND errors "${f}: ${arg_WHAT}: ${found}\n")
+      endif()
+    endforeach()
   endforeach()
-endforeach()
+  set(errors "${errors}" PARENT_SCOPE)
+endfunction()
+forbid(core REGEX "^#include [<\"](btBullet|BulletDynamics|BulletCollision)"
+       WHAT "core includes Bullet")
+forbid(bullet_plugin demos bench python support tests/conformance tests/scene tests/install
+       REGEX "^#include \"(geometry|preprocess|query|penetration|scene|api)/"
+       WHAT "reaches into core internals")
+forbid(support REGEX "^#include [<\"](\\.\\./|support/|common/|smartcollision/bullet/)"
+       WHAT "support includes a user's or the plugin's header")
 if(errors)
   message(FATAL_ERROR "layering violations:\n${errors}")
 endif()

@@ -22,6 +22,11 @@ bool nextValue(int argc, char** argv, int& i, std::string& out);
 /// any other argument or a missing value.
 bool readHeadlessOption(int argc, char** argv, int& i, HeadlessOptions& o);
 
+/// Resident set size now [kB] (/proc/self/statm), 0 when unavailable.
+long residentKb();
+/// The largest resident set size so far [kB].
+long peakResidentKb();
+
 /// Prints `metrics` and writes them to `path` unless it is empty; false when the file
 /// cannot be written.
 bool emitMetrics(const std::string& metrics, const std::string& path);

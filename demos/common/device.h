@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "smartcollision/types.h"
+
 namespace sc::demo {
 
 /// A device pose in world coordinates: position [m] and unit quaternion (w, x, y, z).
@@ -16,6 +18,9 @@ struct DevicePose {
   double position[3] = {0, 0, 0};
   double orientation[4] = {1, 0, 0, 0};
 };
+
+/// The device pose of a position and a unit quaternion.
+DevicePose devicePose(const Vec3& position, const Quat& orientation);
 
 /// Force [N] and torque [N m] for the device to render (world frame).
 struct Wrench {

@@ -38,11 +38,7 @@ class MouseDevice : public Device {
 
   bool poll(DevicePose& out) override {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (int k = 0; k < 3; ++k) out.position[k] = position_[k];
-    out.orientation[0] = orientation_.w();
-    out.orientation[1] = orientation_.x();
-    out.orientation[2] = orientation_.y();
-    out.orientation[3] = orientation_.z();
+    out = devicePose(Vec3(position_[0], position_[1], position_[2]), orientation_);
     return true;
   }
 

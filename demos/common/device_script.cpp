@@ -31,11 +31,7 @@ class ScriptDevice : public Device {
         playback_.clock ? playback_.clock() : std::chrono::duration<double>(now - start_).count();
     t_ = t;
     const bullet::CouplingPose p = script_.sample(scriptTime(t));
-    for (int k = 0; k < 3; ++k) out.position[k] = p.position[k];
-    out.orientation[0] = p.orientation.w();
-    out.orientation[1] = p.orientation.x();
-    out.orientation[2] = p.orientation.y();
-    out.orientation[3] = p.orientation.z();
+    out = devicePose(p.position, p.orientation);
     return true;
   }
 

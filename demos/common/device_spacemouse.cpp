@@ -59,11 +59,7 @@ class SpaceMouseDevice : public Device {
     if (angle > 0.0)
       orientation_ =
           (Quat(Eigen::AngleAxisd(angle, angular_.normalized())) * orientation_).normalized();
-    for (int k = 0; k < 3; ++k) out.position[k] = position_[k];
-    out.orientation[0] = orientation_.w();
-    out.orientation[1] = orientation_.x();
-    out.orientation[2] = orientation_.y();
-    out.orientation[3] = orientation_.z();
+    out = devicePose(position_, orientation_);
     return true;
   }
 

@@ -14,22 +14,12 @@
 #   schedules the loops, so they are reported, not checked: rates and periods are
 #   bench figures (docs/benchmarks.md);
 # and that the PNG is not blank.
-include(${CMAKE_CURRENT_LIST_DIR}/../common/check_png.cmake)
-file(REMOVE_RECURSE ${OUT_DIR})
-file(MAKE_DIRECTORY ${OUT_DIR})
+include(${CMAKE_CURRENT_LIST_DIR}/../common/headless.cmake)
 set(clock_flag "")
 if(CLOCK STREQUAL "lockstep")
   set(clock_flag --lockstep)
 endif()
-execute_process(COMMAND ${XVFB_RUN} -a ${DEMO} --scene ${SCENE} --device script:${SCRIPT} --headless
-                        ${clock_flag} --png ${OUT_DIR}/haptic_coupling.png
-                        --json ${OUT_DIR}/haptic_coupling.json
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "haptic_coupling --headless failed (${rc}):\n${err}")
-endif()
-file(READ ${OUT_DIR}/haptic_coupling.json json)
+sc_run_headless(haptic_coupling json --scene ${SCENE} --device script:${SCRIPT} ${clock_flag})
 foreach(key inside max_penetration_m energy_generated_max_J non_finite_steps non_finite_samples
             max_force_jump_N max_force_jump_ratio max_impact_jump_N max_impact_jump_ratio
             haptic_rate_hz clock)

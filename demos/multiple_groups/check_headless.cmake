@@ -3,17 +3,8 @@
 # frame the scene lists exactly the group pairs the activities imply (7), every
 # direction is computed or not as Table 8-1 and the one-way setting say, the
 # inactive object 11 is never in a result, and every status colour was shown.
-include(${CMAKE_CURRENT_LIST_DIR}/../common/check_png.cmake)
-file(REMOVE_RECURSE ${OUT_DIR})
-file(MAKE_DIRECTORY ${OUT_DIR})
-execute_process(COMMAND ${XVFB_RUN} -a ${DEMO} --headless --seconds 6
-                        --png ${OUT_DIR}/multiple_groups.png --json ${OUT_DIR}/multiple_groups.json
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "multiple_groups --headless failed (${rc}):\n${err}")
-endif()
-file(READ ${OUT_DIR}/multiple_groups.json json)
+include(${CMAKE_CURRENT_LIST_DIR}/../common/headless.cmake)
+sc_run_headless(multiple_groups json --seconds 6)
 string(JSON expected GET "${json}" expected_pairs)
 string(JSON pmin GET "${json}" pair_count_min)
 string(JSON pmax GET "${json}" pair_count_max)

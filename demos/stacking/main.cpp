@@ -4,8 +4,6 @@
 // and real meshes resting on each other. --headless runs a fixed time and writes a
 // PNG and JSON metrics.
 #include <btBulletDynamicsCommon.h>
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -16,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "../common/off_mesh.h"
 #include "../common/cli.h"
 #include "../common/viewer.h"
+#include "sc_support/off_mesh.h"
 #include "smartcollision/bullet/bullet.h"
 
 namespace {
@@ -58,22 +56,6 @@ sc::demo::DrawMesh drawMeshOf(const sc::MeshData& mesh) {
   return m;
 }
 
-/// Resident set size now [kB] (/proc/self/statm), 0 when unavailable.
-long residentKb() {
-  long pages = 0, resident = 0;
-  FILE* f = std::fopen("/proc/self/statm", "r");
-  if (f == nullptr) return 0;
-  if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
-  std::fclose(f);
-  return resident * (sysconf(_SC_PAGESIZE) / 1024);
-}
-
-long peakResidentKb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss;
-}
-
 bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
 sc::MeshData boxMesh(double h) {
@@ -81,16 +63,6 @@ sc::MeshData boxMesh(double h) {
   for (int i = 0; i < 8; ++i) m.vertices.emplace_back(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
   m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
                  {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return m;
-}
-
-/// Scales a mesh so that its largest AABB extent is `size`.
-sc::MeshData normalised(sc::MeshData m, double size) {
-  sc::Aabb box;
-  for (const sc::Vec3& v : m.vertices) box.extend(v);
-  const double extent = (box.max - box.min).maxCoeff();
-  const sc::Vec3 c = 0.5 * (box.min + box.max);
-  for (sc::Vec3& v : m.vertices) v = (v - c) * (size / (extent > 0 ? extent : 1.0));
   return m;
 }
 
@@ -170,7 +142,7 @@ class Demo {
     const double e = energy();
     if (steps_ == 1) start_energy_ = max_energy_ = e;
     max_energy_ = std::max(max_energy_, e);
-    if (steps_ == static_cast<long>(options_.hz)) rss_after_1s_kb_ = residentKb();
+    if (steps_ == static_cast<long>(options_.hz)) rss_after_1s_kb_ = sc::demo::residentKb();
   }
 
   void toggleModel() {
@@ -249,7 +221,8 @@ class Demo {
                   bodies_.size(), options_.hz, steps_, steps_ / options_.hz, max_drift_, max_depth_,
                   rest_samples_ ? std::sqrt(rest_sum_ / rest_samples_) : 0.0, energy(),
                   steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, non_finite_steps_, max_energy_ - start_energy_,
-                  rss_after_1s_kb_, residentKb(), std::max(peakResidentKb(), residentKb()));
+                  rss_after_1s_kb_, sc::demo::residentKb(),
+                  std::max(sc::demo::peakResidentKb(), sc::demo::residentKb()));
     return buf;
   }
 
@@ -313,8 +286,10 @@ class Demo {
     const char* names[1] = {"knot1"};
     std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> kinds;
     for (const char* name : names) {
-      sc::MeshData mesh = sc::demo::readOff(sc::demo::demoMesh(std::string(name) + ".off"));
-      auto shape = mesh.triangles.empty() ? nullptr : makeShape(normalised(std::move(mesh), 0.5));
+      sc::MeshData mesh =
+          sc::support::readOffOrEmpty(sc::demo::demoMesh(std::string(name) + ".off"));
+      auto shape = mesh.triangles.empty() ? nullptr
+                                          : makeShape(sc::support::fitToSize(std::move(mesh), 0.5));
       if (!shape) continue;
       kinds.push_back(shape);
       mesh_draw_.push_back(std::make_unique<sc::demo::DrawMesh>(drawMeshOf(*shape)));
@@ -352,10 +327,10 @@ class Demo {
                sc::demo::demoMesh("elephant.off"), sc::demo::demoMesh("elephant.off")};
     double top = 0.0;
     for (std::size_t i = 0; i < paths.size(); ++i) {
-      sc::MeshData mesh = sc::demo::readOff(paths[i]);
+      sc::MeshData mesh = sc::support::readOffOrEmpty(paths[i]);
       if (mesh.triangles.empty()) continue;
       const bool base = i == 0;
-      auto shape = makeShape(normalised(std::move(mesh), base ? 3.0 : 1.0));
+      auto shape = makeShape(sc::support::fitToSize(std::move(mesh), base ? 3.0 : 1.0));
       if (!shape) continue;
       mesh_draw_.push_back(std::make_unique<sc::demo::DrawMesh>(drawMeshOf(*shape)));
       btVector3 lo, hi;

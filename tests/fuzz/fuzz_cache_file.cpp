@@ -16,9 +16,9 @@
 #include "fuzz_common.h"
 #include "preprocess/cache_file.h"
 #include "preprocess/piece_data.h"
+#include "sc_support/off_mesh.h"
 #include "smartcollision/model.h"
 #include "smartcollision/scene.h"
-#include "support/off_reader.h"
 
 namespace {
 
@@ -36,7 +36,7 @@ struct Fixture {
   std::string path;
 
   Fixture() {
-    auto m = sc::test::readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
+    auto m = sc::support::readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
     if (!m.hasValue()) sc::fuzz::fail("cannot read tests/data/l_prism.off");
     mesh = m.value();
     auto fresh = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, mesh);

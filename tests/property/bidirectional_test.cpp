@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "penetration/result_invariants.h"
+#include "sc_support/off_mesh.h"
 #include "smartcollision/collision.h"
-#include "support/off_reader.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -87,7 +87,7 @@ TEST(Bidirectional, BothDirectionsValidAndSwapOnlyRelabels) {
   const std::uint64_t seed = 510;
   SCOPED_TRACE(testing::Message() << "seed " << seed);
   Rng rng(seed);
-  Result<MeshData> l_prism = readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
+  Result<MeshData> l_prism = support::readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
   ASSERT_TRUE(l_prism.ok()) << l_prism.status().message();
   const ModelPtr l_model = modelOf(l_prism.value());
   ASSERT_TRUE(l_model);

@@ -12,9 +12,9 @@
 
 #include "penetration/result_invariants.h"
 #include "query/gjk.h"
+#include "sc_support/off_mesh.h"
 #include "smartcollision/collision.h"
 #include "support/brute_force.h"
-#include "support/off_reader.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -121,7 +121,7 @@ TEST(InitialResolution, ConvexPairsReportTheGlobalDepthToTheTolerance) {
 }
 
 TEST(InitialResolution, NonConvexPrismsStartFromAFreeContactConfiguration) {
-  auto prism = readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
+  auto prism = support::readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
   ASSERT_TRUE(prism.ok()) << prism.status().message();
   const MeshData& mesh = prism.value();
   const ModelPtr model = modelOf(ModelKind::ClosedPolyhedron, mesh);

@@ -5,7 +5,7 @@
 
 #include <fstream>
 
-#include "support/off_reader.h"
+#include "sc_support/off_mesh.h"
 
 #ifndef SC_MESH_DIR
 #error "SC_MESH_DIR must be defined by tests/CMakeLists.txt"
@@ -28,7 +28,7 @@ MeshData loadTestMesh(const std::string& name) {
     }();
     return {};
   }
-  Result<MeshData> mesh = readOff(path);
+  Result<MeshData> mesh = support::readOff(path);
   if (!mesh.ok()) {
     [&] { FAIL() << "cannot load test mesh " << path << ": " << mesh.status().message(); }();
     return {};

@@ -3,10 +3,11 @@
 #include "support/shapes.h"
 
 #include <cmath>
+#include <utility>
 
 #include "preprocess/convex_hull.h"
+#include "sc_support/off_mesh.h"
 #include "smartcollision/collision.h"
-#include "support/off_reader.h"
 
 namespace sc::test {
 
@@ -158,17 +159,9 @@ ConvexShape randomConvexShape(Rng& rng, double size) {
 }
 
 MeshData scaledOff(const std::string& name, double size) {
-  Result<MeshData> read = readOff(std::string(SC_MESH_DIR) + "/" + name);
+  Result<MeshData> read = support::readOff(std::string(SC_MESH_DIR) + "/" + name);
   if (!read.ok() || read.value().vertices.empty()) return {};
-  MeshData m = read.value();
-  Vec3 lo = m.vertices[0], hi = m.vertices[0];
-  for (const Vec3& v : m.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  const double scale = size / (hi - lo).maxCoeff();
-  for (Vec3& v : m.vertices) v = (v - 0.5 * (lo + hi)) * scale;
-  return m;
+  return support::fitToSize(std::move(read.value()), size);
 }
 
 }  // namespace sc::test

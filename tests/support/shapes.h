@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "geometry/convex_polytope.h"
+#include "sc_support/sample_meshes.h"
 #include "smartcollision/model.h"
-#include "support/sample_meshes.h"
 #include "support/test_support.h"
 
 namespace sc::test {

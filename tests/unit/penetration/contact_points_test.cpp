@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sc_support/off_mesh.h"
 #include "smartcollision/collision.h"
-#include "support/off_reader.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -29,7 +29,7 @@ Placement at(const Vec3& c) {
 }
 
 TEST(ContactPoints, LPrismOnASlabTouchesWithBothPatches) {
-  auto prism = readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
+  auto prism = support::readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
   ASSERT_TRUE(prism.ok());
   const ModelPtr l = modelOf(prism.value());
   ASSERT_EQ(l->pieces()[0]->stats().patches, 2);

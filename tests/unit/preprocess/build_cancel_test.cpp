@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "sc_support/sample_meshes.h"
 #include "smartcollision/model.h"
-#include "support/sample_meshes.h"
 
 namespace sc {
 namespace {

@@ -18,7 +18,7 @@
 #include <tuple>
 #include <vector>
 
-#include "support/off_reader.h"
+#include "sc_support/off_mesh.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -416,7 +416,7 @@ TEST(PatchPolytope, ConcaveFoldBeyondTheToleranceIsRejected) {
 }
 
 TEST(OffReader, ReadsVerticesAndSplitsPolygonsIntoFans) {
-  const Result<MeshData> mesh = test::parseOff(
+  const Result<MeshData> mesh = support::parseOff(
       "OFF\n# a comment\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n"
       "4 0 1 2 3\n3 0 1 4 255 0 0\n");
   ASSERT_TRUE(mesh.ok()) << mesh.status().message();
@@ -441,11 +441,11 @@ TEST(OffReader, RejectsMalformedFiles) {
       "OFF\n-3 1 0\n",                                 // negative count
   };
   for (const char* text : bad) {
-    const Result<MeshData> mesh = test::parseOff(text);
+    const Result<MeshData> mesh = support::parseOff(text);
     EXPECT_FALSE(mesh.ok()) << text;
     EXPECT_EQ(mesh.status().code(), ErrorCode::InvalidArgument) << text;
   }
-  const Result<MeshData> missing = test::readOff("/nonexistent/mesh.off");
+  const Result<MeshData> missing = support::readOff("/nonexistent/mesh.off");
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.status().code(), ErrorCode::File);
 }

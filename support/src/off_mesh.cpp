@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
-#include "support/off_reader.h"
+#include "sc_support/off_mesh.h"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <utility>
 #include <vector>
 
-namespace sc::test {
+namespace sc::support {
 namespace {
 
 Status bad(const std::string& what) { return {ErrorCode::InvalidArgument, "OFF: " + what}; }
@@ -86,4 +88,22 @@ Result<MeshData> readOff(const std::string& path) {
   return parseOff(text.str());
 }
 
-}  // namespace sc::test
+MeshData readOffOrEmpty(const std::string& path) {
+  Result<MeshData> mesh = readOff(path);
+  if (mesh.ok()) return std::move(mesh.value());
+  std::fprintf(stderr, "cannot read %s: %s\n", path.c_str(), mesh.status().message().c_str());
+  return {};
+}
+
+MeshData fitToSize(MeshData mesh, double size) {
+  if (mesh.vertices.empty()) return mesh;
+  Aabb box;
+  for (const Vec3& v : mesh.vertices) box.extend(v);
+  const double extent = (box.max - box.min).maxCoeff();
+  const Vec3 centre = 0.5 * (box.min + box.max);
+  const double scale = size / (extent > 0 ? extent : 1.0);
+  for (Vec3& v : mesh.vertices) v = (v - centre) * scale;
+  return mesh;
+}
+
+}  // namespace sc::support

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "support/sample_meshes.h"
+#include "sc_support/sample_meshes.h"
 
 #include <algorithm>
 #include <cmath>

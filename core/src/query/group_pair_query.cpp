@@ -239,17 +239,20 @@ double GroupPairQuery::sphereBound(const NodePair& p) const {
   return (tc - oc).norm() - t.radius - o.radius;
 }
 
-double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance,
-                                      double within_distance) {
+GjkResult GroupPairQuery::nodeGjk(const NodePair& p, double max_distance, double within_distance) {
   ++counters_.node_gjk;
   const Slot& ts = t_slots_[p.t_slot];
   const Slot& os = o_slots_[p.o_slot];
   GjkSettings settings;
   settings.max_distance = max_distance;
   settings.within_distance = within_distance;
-  const GjkResult r =
-      gjkDistance(polytopeOf(ts, p.t_node), o_from_piece_[p.t_slot], polytopeOf(os, p.o_node),
-                  os.group_from_piece, settings, cacheOf(p));
+  return gjkDistance(polytopeOf(ts, p.t_node), o_from_piece_[p.t_slot], polytopeOf(os, p.o_node),
+                     os.group_from_piece, settings, cacheOf(p));
+}
+
+double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance,
+                                      double within_distance) {
+  const GjkResult r = nodeGjk(p, max_distance, within_distance);
   return r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound;
 }
 
@@ -818,7 +821,7 @@ struct GroupPairQuery::ToiPolicy {
   double reach() const { return limit * reach_length + 0.5 * stop_gap; }
   double splitWithin() const { return -1.0; }
   bool full() const { return false; }
-  bool admits(const NodePair& p) const {
+  bool admits(const NodePair& p) {
     // Swept bounding spheres: the target sphere's centre runs along a segment.
     const HullBvhNode& t = q.t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
     const Slot& os = q.o_slots_[p.o_slot];
@@ -827,7 +830,18 @@ struct GroupPairQuery::ToiPolicy {
     const double swept =
         pointSegmentDistance(os.group_from_piece * o.center, c0, c0 + limit * delta) - t.radius -
         o.radius;
-    return swept <= 0.5 * stop_gap;
+    if (swept > 0.5 * stop_gap) return false;
+    return !planeKeepsApart(p);
+  }
+  /// True when the hulls' separating plane at the start stays more than stop_gap open
+  /// up to `limit`: along its normal n they part at the rate n.delta, whatever the
+  /// distance does. Then every leaf pair below keeps a gap above stop_gap and
+  /// advances to `limit`: a motion along the contact (a jump sideways) prunes what
+  /// the distance bound alone, assuming the worst direction, would keep.
+  bool planeKeepsApart(const NodePair& p) {
+    const GjkResult r = q.nodeGjk(p, reach(), -1.0);
+    if (r.status != GjkStatus::Separated) return false;
+    return r.distance + limit * std::min(0.0, r.normal.dot(delta)) > stop_gap;
   }
   bool visit(const NodePair& p) {
     const Slot& ts = q.t_slots_[p.t_slot];

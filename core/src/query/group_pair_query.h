@@ -185,6 +185,8 @@ class GroupPairQuery {
   /// GJK lower bound of a node pair's distance, exact up to max_distance unless the
   /// pair is found within `within_distance` first (negative: never).
   double nodeLowerBound(const NodePair& p, double max_distance, double within_distance);
+  /// GJK on a node pair's hulls (as nodeLowerBound), with its closest points and normal.
+  GjkResult nodeGjk(const NodePair& p, double max_distance, double within_distance);
   /// Largest displacement of a target point from pose `from` to pose `to`.
   double displacementBound(const Rigid& from, const Rigid& to) const;
   /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.

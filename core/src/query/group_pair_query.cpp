@@ -240,14 +240,18 @@ double GroupPairQuery::sphereBound(const NodePair& p) const {
 }
 
 GjkResult GroupPairQuery::nodeGjk(const NodePair& p, double max_distance, double within_distance) {
-  ++counters_.node_gjk;
-  const Slot& ts = t_slots_[p.t_slot];
-  const Slot& os = o_slots_[p.o_slot];
   GjkSettings settings;
   settings.max_distance = max_distance;
   settings.within_distance = within_distance;
-  return gjkDistance(polytopeOf(ts, p.t_node), o_from_piece_[p.t_slot], polytopeOf(os, p.o_node),
-                     os.group_from_piece, settings, cacheOf(p));
+  return nodeGjkAt(p, o_from_piece_[p.t_slot], settings, cacheOf(p));
+}
+
+GjkResult GroupPairQuery::nodeGjkAt(const NodePair& p, const Rigid& o_from_piece,
+                                    const GjkSettings& settings, SimplexCache& cache) {
+  ++counters_.node_gjk;
+  const Slot& os = o_slots_[p.o_slot];
+  return gjkDistance(polytopeOf(t_slots_[p.t_slot], p.t_node), o_from_piece,
+                     polytopeOf(os, p.o_node), os.group_from_piece, settings, cache);
 }
 
 double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance,
@@ -833,15 +837,28 @@ struct GroupPairQuery::ToiPolicy {
     if (swept > 0.5 * stop_gap) return false;
     return !planeKeepsApart(p);
   }
-  /// True when the hulls' separating plane at the start stays more than stop_gap open
-  /// up to `limit`: along its normal n they part at the rate n.delta, whatever the
-  /// distance does. Then every leaf pair below keeps a gap above stop_gap and
-  /// advances to `limit`: a motion along the contact (a jump sideways) prunes what
-  /// the distance bound alone, assuming the worst direction, would keep.
+  /// True when the hulls stay more than stop_gap apart up to `limit`, by their
+  /// separating planes: along the normal n of the plane at the start they part at
+  /// the rate n.delta, whatever the distance does, so it keeps them apart up to some
+  /// s1; the plane at `limit` does back to some s0; s0 < s1 covers the motion. Then
+  /// every leaf pair below advances to `limit`: a motion along the contact (a jump
+  /// sideways) prunes what the distance bound alone, assuming the worst direction,
+  /// would keep.
   bool planeKeepsApart(const NodePair& p) {
-    const GjkResult r = q.nodeGjk(p, reach(), -1.0);
-    if (r.status != GjkStatus::Separated) return false;
-    return r.distance + limit * std::min(0.0, r.normal.dot(delta)) > stop_gap;
+    const double s1 = openUntil(q.nodeGjk(p, reach(), -1.0), -1.0);
+    if (s1 >= limit) return true;
+    if (s1 < 0.0) return false;
+    SimplexCache cold;  // the pair's cache keeps its warm start at the start pose
+    const Rigid end = translated(q.o_from_piece_[p.t_slot], limit * delta);
+    const double s0 = limit - openUntil(q.nodeGjkAt(p, end, GjkSettings(), cold), 1.0);
+    return s0 < s1;
+  }
+  /// How far along the motion (sign -1) or back from its end (+1) the separating
+  /// plane of `r` stays more than stop_gap open; -1 when it is not open there.
+  double openUntil(const GjkResult& r, double sign) const {
+    if (r.status != GjkStatus::Separated || r.distance <= stop_gap) return -1.0;
+    const double closing = sign * r.normal.dot(delta);
+    return closing <= 0.0 ? kInfinity : (r.distance - stop_gap) / closing;
   }
   bool visit(const NodePair& p) {
     const Slot& ts = q.t_slots_[p.t_slot];

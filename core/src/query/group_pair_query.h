@@ -187,6 +187,9 @@ class GroupPairQuery {
   double nodeLowerBound(const NodePair& p, double max_distance, double within_distance);
   /// GJK on a node pair's hulls (as nodeLowerBound), with its closest points and normal.
   GjkResult nodeGjk(const NodePair& p, double max_distance, double within_distance);
+  /// GJK on a node pair's hulls, the target piece placed by `o_from_piece`.
+  GjkResult nodeGjkAt(const NodePair& p, const Rigid& o_from_piece, const GjkSettings& settings,
+                      SimplexCache& cache);
   /// Largest displacement of a target point from pose `from` to pose `to`.
   double displacementBound(const Rigid& from, const Rigid& to) const;
   /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.

@@ -562,7 +562,10 @@ void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
 }
 
 double GroupPairQuery::nearCoveredReach(const Rigid& o_from_t) const {
-  return near_valid_ ? near_reach_ - displacementBound(near_pose_, o_from_t) : 0.0;
+  // The last distance bounds every pair from below: an answer is complete up to that
+  // too (an empty one from contactsNear's shortcut, in particular).
+  const double near = near_valid_ ? near_reach_ - displacementBound(near_pose_, o_from_t) : 0.0;
+  return std::max(near, knownLowerBound(o_from_t));
 }
 
 bool GroupPairQuery::nearCovers(const Rigid& o_from_t, double reach) const {
@@ -573,6 +576,14 @@ bool GroupPairQuery::nearCovers(const Rigid& o_from_t, double reach) const {
 
 void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, double margin,
                                   std::vector<LeafContact>& out) {
+  // Every pair is farther than the threshold by the last distance, less the motion
+  // since (a free proxy): nothing to gather, and no near pairs to keep or rebuild.
+  if (knownLowerBound(o_from_t) > threshold) {
+    out.clear();
+    counters_ = TraversalCounters();
+    counters_.shortcut = true;
+    return;
+  }
   // The same pose and threshold as the last call (a slide that did not move, then the
   // depth's projection at the same proxy): its answer, without the GJK calls.
   if (near_valid_ && memo_valid_ && threshold == memo_threshold_ &&

@@ -593,6 +593,9 @@ void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, doubl
     return;
   }
   contactsNearUncached(o_from_t, threshold, margin, out);
+  // The nearest pair seeds the next distance(): a proxy leaving contact measures its
+  // distance next to where it touched, not where it was last seen apart.
+  if (!out.empty()) seed_ = {out.front().t_leaf, out.front().o_leaf};
   memo_valid_ = true;
   memo_pose_ = o_from_t;
   memo_threshold_ = threshold;

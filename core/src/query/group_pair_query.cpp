@@ -239,17 +239,24 @@ double GroupPairQuery::sphereBound(const NodePair& p) const {
   return (tc - oc).norm() - t.radius - o.radius;
 }
 
-double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance,
-                                      double within_distance) {
-  ++counters_.node_gjk;
-  const Slot& ts = t_slots_[p.t_slot];
-  const Slot& os = o_slots_[p.o_slot];
+GjkResult GroupPairQuery::nodeGjk(const NodePair& p, double max_distance, double within_distance) {
   GjkSettings settings;
   settings.max_distance = max_distance;
   settings.within_distance = within_distance;
-  const GjkResult r =
-      gjkDistance(polytopeOf(ts, p.t_node), o_from_piece_[p.t_slot], polytopeOf(os, p.o_node),
-                  os.group_from_piece, settings, cacheOf(p));
+  return nodeGjkAt(p, o_from_piece_[p.t_slot], settings, cacheOf(p));
+}
+
+GjkResult GroupPairQuery::nodeGjkAt(const NodePair& p, const Rigid& o_from_piece,
+                                    const GjkSettings& settings, SimplexCache& cache) {
+  ++counters_.node_gjk;
+  const Slot& os = o_slots_[p.o_slot];
+  return gjkDistance(polytopeOf(t_slots_[p.t_slot], p.t_node), o_from_piece,
+                     polytopeOf(os, p.o_node), os.group_from_piece, settings, cache);
+}
+
+double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance,
+                                      double within_distance) {
+  const GjkResult r = nodeGjk(p, max_distance, within_distance);
   return r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound;
 }
 
@@ -555,7 +562,10 @@ void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
 }
 
 double GroupPairQuery::nearCoveredReach(const Rigid& o_from_t) const {
-  return near_valid_ ? near_reach_ - displacementBound(near_pose_, o_from_t) : 0.0;
+  // The last distance bounds every pair from below: an answer is complete up to that
+  // too (an empty one from contactsNear's shortcut, in particular).
+  const double near = near_valid_ ? near_reach_ - displacementBound(near_pose_, o_from_t) : 0.0;
+  return std::max(near, knownLowerBound(o_from_t));
 }
 
 bool GroupPairQuery::nearCovers(const Rigid& o_from_t, double reach) const {
@@ -566,6 +576,14 @@ bool GroupPairQuery::nearCovers(const Rigid& o_from_t, double reach) const {
 
 void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, double margin,
                                   std::vector<LeafContact>& out) {
+  // Every pair is farther than the threshold by the last distance, less the motion
+  // since (a free proxy): nothing to gather, and no near pairs to keep or rebuild.
+  if (knownLowerBound(o_from_t) > threshold) {
+    out.clear();
+    counters_ = TraversalCounters();
+    counters_.shortcut = true;
+    return;
+  }
   // The same pose and threshold as the last call (a slide that did not move, then the
   // depth's projection at the same proxy): its answer, without the GJK calls.
   if (near_valid_ && memo_valid_ && threshold == memo_threshold_ &&
@@ -575,6 +593,9 @@ void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, doubl
     return;
   }
   contactsNearUncached(o_from_t, threshold, margin, out);
+  // The nearest pair seeds the next distance(): a proxy leaving contact measures its
+  // distance next to where it touched, not where it was last seen apart.
+  if (!out.empty()) seed_ = {out.front().t_leaf, out.front().o_leaf};
   memo_valid_ = true;
   memo_pose_ = o_from_t;
   memo_threshold_ = threshold;
@@ -818,7 +839,7 @@ struct GroupPairQuery::ToiPolicy {
   double reach() const { return limit * reach_length + 0.5 * stop_gap; }
   double splitWithin() const { return -1.0; }
   bool full() const { return false; }
-  bool admits(const NodePair& p) const {
+  bool admits(const NodePair& p) {
     // Swept bounding spheres: the target sphere's centre runs along a segment.
     const HullBvhNode& t = q.t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
     const Slot& os = q.o_slots_[p.o_slot];
@@ -827,7 +848,31 @@ struct GroupPairQuery::ToiPolicy {
     const double swept =
         pointSegmentDistance(os.group_from_piece * o.center, c0, c0 + limit * delta) - t.radius -
         o.radius;
-    return swept <= 0.5 * stop_gap;
+    if (swept > 0.5 * stop_gap) return false;
+    return !planeKeepsApart(p);
+  }
+  /// True when the hulls stay more than stop_gap apart up to `limit`, by their
+  /// separating planes: along the normal n of the plane at the start they part at
+  /// the rate n.delta, whatever the distance does, so it keeps them apart up to some
+  /// s1; the plane at `limit` does back to some s0; s0 < s1 covers the motion. Then
+  /// every leaf pair below advances to `limit`: a motion along the contact (a jump
+  /// sideways) prunes what the distance bound alone, assuming the worst direction,
+  /// would keep.
+  bool planeKeepsApart(const NodePair& p) {
+    const double s1 = openUntil(q.nodeGjk(p, reach(), -1.0), -1.0);
+    if (s1 >= limit) return true;
+    if (s1 < 0.0) return false;
+    SimplexCache cold;  // the pair's cache keeps its warm start at the start pose
+    const Rigid end = translated(q.o_from_piece_[p.t_slot], limit * delta);
+    const double s0 = limit - openUntil(q.nodeGjkAt(p, end, GjkSettings(), cold), 1.0);
+    return s0 < s1;
+  }
+  /// How far along the motion (sign -1) or back from its end (+1) the separating
+  /// plane of `r` stays more than stop_gap open; -1 when it is not open there.
+  double openUntil(const GjkResult& r, double sign) const {
+    if (r.status != GjkStatus::Separated || r.distance <= stop_gap) return -1.0;
+    const double closing = sign * r.normal.dot(delta);
+    return closing <= 0.0 ? kInfinity : (r.distance - stop_gap) / closing;
   }
   bool visit(const NodePair& p) {
     const Slot& ts = q.t_slots_[p.t_slot];

@@ -111,11 +111,13 @@ class GroupPairQuery {
   /// resting body makes: one traversal with threshold + `margin` keeps its pairs, and
   /// later calls whose target points moved less than `margin` from that pose
   /// (displacementBound) evaluate only those (moving every point by at most d changes
-  /// every gap by at most d). Same output as contacts().
+  /// every gap by at most d). Same output as contacts(). Empty, touching no near
+  /// pair, when the last distance less the motion since exceeds the threshold.
   void contactsNear(const Rigid& o_from_t, double threshold, double margin,
                     std::vector<LeafContact>& out);
   /// How far the last contactsNear()'s answer is complete at o_from_t: at least its
-  /// threshold, unless kMaxContacts cut its pairs short.
+  /// threshold, unless kMaxContacts cut its pairs short; at least the last distance
+  /// less the motion since.
   double nearCoveredReach(const Rigid& o_from_t) const;
 
   /// Closest points of one leaf pair (GJK with its warm start).
@@ -185,6 +187,11 @@ class GroupPairQuery {
   /// GJK lower bound of a node pair's distance, exact up to max_distance unless the
   /// pair is found within `within_distance` first (negative: never).
   double nodeLowerBound(const NodePair& p, double max_distance, double within_distance);
+  /// GJK on a node pair's hulls (as nodeLowerBound), with its closest points and normal.
+  GjkResult nodeGjk(const NodePair& p, double max_distance, double within_distance);
+  /// GJK on a node pair's hulls, the target piece placed by `o_from_piece`.
+  GjkResult nodeGjkAt(const NodePair& p, const Rigid& o_from_piece, const GjkSettings& settings,
+                      SimplexCache& cache);
   /// Largest displacement of a target point from pose `from` to pose `to`.
   double displacementBound(const Rigid& from, const Rigid& to) const;
   /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.

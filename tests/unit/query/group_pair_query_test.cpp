@@ -255,6 +255,47 @@ TEST_F(GroupPairQueryTest, TranslationToiMatchesAdvancementOfAllLeafPairs) {
               equal, blocked);
 }
 
+// Motions along the contact (a sideways jump near the opponent) are pruned by the
+// node hulls' separating planes, which open or close at the rate n.delta: the time
+// of impact stays that of every leaf pair, and the end pose stays safe.
+TEST_F(GroupPairQueryTest, TranslationToiAlongTheContactMatchesAllLeafPairs) {
+  GroupPairQuery q;
+  q.bind(target_, opponent_);
+  const BruteForce brute(q);
+  test::Rng rng(19);
+  int cases = 0, equal = 0, blocked = 0;
+  const double stop_gap = 1e-3;
+  for (int c = 0; cases < kToiPoses && c < 20 * kToiPoses; ++c) {
+    SCOPED_TRACE(c);
+    const Rigid pose = randomPose(rng, 1.2);
+    LeafContact closest;
+    if (!q.distance(pose, kInfinity, closest) || closest.intersecting) continue;
+    if (closest.gap < 2.0 * stop_gap || closest.gap > 0.1) continue;  // near the opponent
+    // Orthogonal to the closest pair's normal, with a little of it either way.
+    const Vec3 side = closest.normal.unitOrthogonal();
+    const Vec3 along = Eigen::AngleAxisd(test::uniform(rng, 0, 2 * M_PI), closest.normal) * side;
+    const Vec3 delta =
+        test::uniform(rng, 0.05, 0.6) * along + test::uniform(rng, -0.02, 0.02) * closest.normal;
+    const std::vector<LeafPair> skip;
+    const double s = q.translationToi(pose, delta, stop_gap, skip);
+    const double expected = brute.toi(pose, delta, stop_gap, skip);
+    ++cases;
+    EXPECT_GE(s, expected - 1e-9);
+    if (std::abs(s - expected) <= 1e-9) ++equal;
+    if (s < 1.0) ++blocked;
+    const Rigid end{pose.rotation, pose.translation + s * delta};
+    for (int i = 0; i < q.targetLeafCount(); ++i)
+      for (int j = 0; j < q.opponentLeafCount(); ++j)
+        ASSERT_GE(brute.gap(i, j, end), 0.5 * stop_gap * (1 - 1e-6)) << i << " " << j;
+  }
+  EXPECT_EQ(cases, kToiPoses);
+  EXPECT_GE(equal, cases - 1);
+  EXPECT_GE(blocked, 1);  // some sideways motions meet the opponent, some do not
+  EXPECT_LT(blocked, cases);
+  std::printf("[ group pair query ] sideways toi: %d cases, %d equal to all pairs, %d blocked\n",
+              cases, equal, blocked);
+}
+
 TEST_F(GroupPairQueryTest, CoherenceSavesWorkButNotAccuracy) {
   GroupPairQuery warm;
   warm.bind(target_, opponent_);

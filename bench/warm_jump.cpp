@@ -19,7 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "off_mesh.h"
+#include "harness.h"
+#include "meshes.h"
+#include "sc_support/off_mesh.h"
+#include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
 
 namespace {
@@ -35,12 +38,6 @@ constexpr double kStepAngle = 2e-4;  // radians per step of the orbit and of the
 constexpr int kRuns = 3;
 constexpr double kRatio = 1.2, kSlackUs = 20.0;
 
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 struct Sample {
   double wall_us = 0.0, cpu_us = 0.0;
 };
@@ -54,7 +51,7 @@ struct Body {
 bool loadBody(const char* name, Body& body) {
   sc::MeshData raw = sc_bench::loadOff(name);
   if (raw.triangles.empty()) return false;
-  body.mesh = sc_bench::unitSize(std::move(raw));
+  body.mesh = sc::support::fitToSize(std::move(raw), 1.0);
   auto piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, body.mesh);
   if (!piece.hasValue()) return false;
   body.model = std::make_shared<const sc::Model>(sc::ModelKind::ClosedPolyhedron,
@@ -131,12 +128,12 @@ std::vector<sc::Rigid> makePath(const Pair& pair, double radius, bool penetratin
 
 Sample timed(const Pair& pair, sc::PairTracker& tracker, const sc::Rigid& pose,
              sc::DirectedResult& r) {
-  const double c0 = threadCpuSeconds();
+  const double c0 = sc_bench::threadCpuSeconds();
   const auto t0 = Clock::now();
   r = pair.update(tracker, pose);
   const auto t1 = Clock::now();
   Sample s;
-  s.cpu_us = 1e6 * (threadCpuSeconds() - c0);
+  s.cpu_us = 1e6 * (sc_bench::threadCpuSeconds() - c0);
   s.wall_us = 1e6 * std::chrono::duration<double>(t1 - t0).count();
   return s;
 }
@@ -173,11 +170,6 @@ Outcome run(const Pair& pair, const std::vector<sc::Rigid>& path, bool penetrati
   return o;
 }
 
-double quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
-}
-
 /// Prints the case's figures; true when every step meets the target in CPU time.
 bool report(const char* name, const Outcome& o, std::FILE* csv) {
   int over_cpu = 0, over_wall = 0;
@@ -206,9 +198,10 @@ bool report(const char* name, const Outcome& o, std::FILE* csv) {
       "%-11s warm cpu median %7.1f us max %8.1f us | fresh cpu median %7.1f us max %8.1f us\n"
       "%-11s jump steps: warm cpu median %7.1f us max %8.1f us, fresh median %7.1f us\n"
       "%-11s max warm / (1.2 fresh + 20 us): cpu %.3f (%d steps over), wall %.3f (%d over)\n",
-      name, quantile(warm_cpu, 0.5), quantile(warm_cpu, 1.0), quantile(cold_cpu, 0.5),
-      quantile(cold_cpu, 1.0), name, quantile(jump_warm, 0.5), quantile(jump_warm, 1.0),
-      quantile(jump_cold, 0.5), name, worst_cpu, over_cpu, worst_wall, over_wall);
+      name, sc::support::quantile(warm_cpu, 0.5), sc::support::quantile(warm_cpu, 1.0),
+      sc::support::quantile(cold_cpu, 0.5), sc::support::quantile(cold_cpu, 1.0), name,
+      sc::support::quantile(jump_warm, 0.5), sc::support::quantile(jump_warm, 1.0),
+      sc::support::quantile(jump_cold, 0.5), name, worst_cpu, over_cpu, worst_wall, over_wall);
   if (o.mismatches > 0)
     std::printf("%-11s %d steps where warm and fresh distances differ\n", name, o.mismatches);
   return over_cpu == 0 && o.mismatches == 0;

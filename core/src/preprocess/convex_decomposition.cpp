@@ -20,6 +20,11 @@
 //     new vertex and a face of the last verified hull that the vertex sees lies
 //     inside the new hull, so a triangle reaching into it bans the face at once;
 //  5. seeds are taken next to finished patches, so patches tile the surface;
+//     patches grow within one region (median splits of the triangles' centres,
+//     at most kRegionTriangles each) while condition (2) still tests the whole
+//     mesh: a region's patches depend on it alone, so regions run in parallel
+//     and the result is the same for any thread count, and a patch's size, with
+//     the cost of its checks, is bounded, so the work grows linearly;
 //  6. a hull face that equals an input triangle of another patch is a model face
 //     too: it gets that triangle as face_source, so only faces off the surface
 //     count as virtual.
@@ -29,8 +34,9 @@
 // divides, the cell directly behind its own faces. A patch whose own triangles
 // are crossed by other triangles is therefore flat (usually one triangle).
 //
-// Departures from the paper: no patch merging or post-optimisation; the
-// tolerance is relative to the mesh size (patch_polytope.h).
+// Departures from the paper: no patch merging or post-optimisation; regions cut
+// patches at their borders; the tolerance is relative to the mesh size
+// (patch_polytope.h).
 #include "preprocess/convex_decomposition.h"
 
 #include <algorithm>

@@ -92,13 +92,11 @@ void buildSoupLeaves(PieceData& data) {
   data.stats.hull_vertices = 3 * data.stats.patches;
 }
 
-/// Threads to build with: BuildOptions::threads, or for 0 one per hardware thread
-/// (at most kMaxAutomaticThreads).
-constexpr int kMaxAutomaticThreads = 8;
+/// Threads to build with: BuildOptions::threads, or for 0 one per hardware thread.
 int threadCount(const BuildOptions& options) {
   if (options.threads > 0) return options.threads;
   const int hardware = static_cast<int>(std::thread::hardware_concurrency());
-  return std::clamp(hardware, 1, kMaxAutomaticThreads);
+  return std::clamp(hardware, 1, kMaxBuildThreads);
 }
 
 bool cancelled(const BuildOptions& options) { return options.cancel && options.cancel(); }

@@ -105,9 +105,9 @@ TEST(BuildCancel, CancelOnTwoThreadsStopsTheWorkersAndWritesNothing) {
   double highest = 0.0;
   BuildOptions options = cancelAt(0.3, file.path, highest);
   options.threads = 2;
-  // Several regions, so both threads have work when the cancel comes.
+  // Two regions, so both threads have work when the cancel comes.
   const Result<PiecePtr> built =
-      buildPiece(ModelKind::ClosedPolyhedron, samples::torusMesh(1.0, 0.3, 100, 100), options);
+      buildPiece(ModelKind::ClosedPolyhedron, samples::torusMesh(1.0, 0.3, 100, 50), options);
   ASSERT_FALSE(built.hasValue());
   EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
   EXPECT_LT(highest, 0.85);

@@ -5,6 +5,10 @@
 // (non-convex) subdivided 1 -> 4 per level, and CGAL models at their own resolution;
 // every model against a copy of itself, at unit size.
 // Usage: triangle_scaling [--csv FILE] [--max-triangles N] [--steps N]
+// Preprocessing alone, 10k to 2M triangles (a closed non-convex torus series, the
+// same tori as soups, CGAL's bunny), each model in a fresh process of this program
+// so that its peak memory is its own:
+//        triangle_scaling --preprocess-csv FILE [--max-triangles N] [--threads N]
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -20,10 +24,15 @@
 #include <utility>
 #include <vector>
 
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "meshes.h"
 #include "sc_support/csv.h"
 #include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
+#include "sc_support/sample_meshes.h"
 
 #if SC_BENCH_HAVE_FCL
 #include <fcl/fcl.h>
@@ -226,6 +235,9 @@ struct Options {
   std::string csv = "triangle_scaling.csv";
   int max_triangles = 500000;
   int steps = 400;
+  std::string preprocess_csv;  ///< non-empty: the preprocessing series instead
+  std::string one_case;        ///< internal: preprocess this case and print its row
+  int threads = 0;             ///< BuildOptions::threads for the preprocessing series
 };
 
 Options parse(int argc, char** argv) {
@@ -234,8 +246,126 @@ Options parse(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--csv")) o.csv = argv[i + 1];
     if (!std::strcmp(argv[i], "--max-triangles")) o.max_triangles = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--steps")) o.steps = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--preprocess-csv")) o.preprocess_csv = argv[i + 1];
+    if (!std::strcmp(argv[i], "--one-case")) o.one_case = argv[i + 1];
+    if (!std::strcmp(argv[i], "--threads")) o.threads = std::atoi(argv[i + 1]);
   }
   return o;
+}
+
+// ---- Preprocessing alone, one fresh process per model ----
+
+/// A preprocessing case: "closed:AROUND:TUBE" or "soup:AROUND:TUBE" (a torus of
+/// 2 * AROUND * TUBE triangles, sc::samples::torusMesh(1, 0.3, ...)) or "off:NAME".
+struct PrepCase {
+  std::string series, spec;
+};
+
+std::vector<PrepCase> prepCases(int max_triangles) {
+  // (around, tube): 10k, 20k, 40k, 80k, 160k, 320k, 500k, 1M, 2M triangles.
+  const int sizes[][2] = {{100, 50},  {100, 100}, {200, 100},  {200, 200},  {400, 200},
+                          {400, 400}, {500, 500}, {1000, 500}, {1000, 1000}};
+  std::vector<PrepCase> out;
+  for (const char* kind : {"closed", "soup"}) {
+    for (const auto& s : sizes) {
+      if (2 * s[0] * s[1] > max_triangles) continue;
+      const std::string series = std::string(kind) == "closed" ? "torus (closed)" : "torus (soup)";
+      out.push_back(
+          {series, std::string(kind) + ":" + std::to_string(s[0]) + ":" + std::to_string(s[1])});
+    }
+  }
+  out.push_back({"CGAL models", "off:bunny00"});
+  return out;
+}
+
+double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+long peakKilobytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+/// Preprocesses one case in this process (with its cache file written, as a user's
+/// first start does), then FCL's BVH build of it; prints one CSV row.
+int runOneCase(const std::string& spec, int threads) {
+  const std::string kind = spec.substr(0, spec.find(':'));
+  sc::MeshData mesh;
+  if (kind == "off") {
+    mesh = sc::support::fitToSize(sc_bench::loadOff(spec.substr(4)), 1.0);
+  } else {
+    int around = 0, tube = 0;
+    std::sscanf(spec.c_str() + kind.size() + 1, "%d:%d", &around, &tube);
+    mesh = sc::samples::torusMesh(1.0, 0.3, around, tube);
+  }
+  if (mesh.triangles.empty()) return 1;
+  const long before_kb = peakKilobytes();
+  sc::BuildOptions options;
+  options.threads = threads;
+  options.cache_file = "/tmp/triangle_scaling_" + std::to_string(::getpid()) + ".bvh";
+  const sc::ModelKind model_kind =
+      kind == "soup" ? sc::ModelKind::TriangleSoup : sc::ModelKind::ClosedPolyhedron;
+  const double cpu0 = cpuSeconds();
+  const auto t0 = Clock::now();
+  sc::Result<sc::PiecePtr> piece = sc::buildPiece(model_kind, mesh, options);
+  const double wall = secondsSince(t0), cpu = cpuSeconds() - cpu0;
+  const long peak_kb = peakKilobytes();
+  struct stat file {};
+  const long cache_bytes = ::stat(options.cache_file.c_str(), &file) == 0 ? long(file.st_size) : -1;
+  std::remove(options.cache_file.c_str());
+  if (!piece.ok()) {
+    std::fprintf(stderr, "triangle_scaling: %s: %s\n", spec.c_str(),
+                 piece.status().message().c_str());
+    return 1;
+  }
+  double fcl_s = 0.0;
+#if SC_BENCH_HAVE_FCL
+  const auto t1 = Clock::now();
+  fcl::BVHModel<fcl::OBBRSSd> fcl_model;
+  std::vector<fcl::Vector3d> points(mesh.vertices.begin(), mesh.vertices.end());
+  std::vector<fcl::Triangle> triangles;
+  for (const sc::Tri& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  fcl_model.beginModel();
+  fcl_model.addSubModel(points, triangles);
+  fcl_model.endModel();
+  fcl_s = secondsSince(t1);
+#endif
+  std::printf("%zu,%.3f,%.3f,%.3f,%ld,%ld,%ld,%d\n", mesh.triangles.size(), wall, cpu, fcl_s,
+              before_kb, peak_kb, cache_bytes, piece.value()->stats().patches);
+  return 0;
+}
+
+/// Runs every case in a child process of this program and writes the CSV.
+int runPreprocessSeries(const char* self, const Options& o) {
+  std::FILE* csv = std::fopen(o.preprocess_csv.c_str(), "w");
+  if (!csv) {
+    std::fprintf(stderr, "triangle_scaling: cannot write %s\n", o.preprocess_csv.c_str());
+    return 1;
+  }
+  std::fprintf(csv,
+               "series,case,triangles,wall_s,cpu_s,fcl_build_s,input_peak_kb,peak_kb,"
+               "cache_bytes,patches,threads\n");
+  for (const PrepCase& c : prepCases(o.max_triangles)) {
+    const std::string command =
+        std::string(self) + " --one-case " + c.spec + " --threads " + std::to_string(o.threads);
+    std::FILE* child = ::popen(command.c_str(), "r");
+    char line[256] = {};
+    const bool ok = child && std::fgets(line, sizeof line, child);
+    if (child) ::pclose(child);
+    if (!ok) continue;
+    line[std::strcspn(line, "\n")] = 0;
+    std::fprintf(csv, "%s,%s,%s,%d\n", c.series.c_str(), c.spec.c_str(), line, o.threads);
+    std::fflush(csv);
+    std::printf("%-16s %-16s %s\n", c.series.c_str(), c.spec.c_str(), line);
+    std::fflush(stdout);
+  }
+  std::fclose(csv);
+  return 0;
 }
 
 void writeCsv(const std::string& path, const std::vector<Row>& rows) {
@@ -281,6 +411,8 @@ std::vector<std::pair<Row, sc::MeshData>> models(int max_triangles) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
+  if (!options.one_case.empty()) return runOneCase(options.one_case, options.threads);
+  if (!options.preprocess_csv.empty()) return runPreprocessSeries(argv[0], options);
   // First use pays one-time set-up (allocator, thread-local scratch): not the model's.
   (void)sc::buildPiece(sc::ModelKind::ClosedPolyhedron, icosahedron());
   std::vector<Row> rows;

@@ -25,16 +25,16 @@ struct MeshData {
 
 /// What preprocessing made of a piece.
 struct PieceStats {
-  int vertices = 0;       ///< input vertices
-  int triangles = 0;      ///< input triangles
-  bool flipped = false;   ///< closed piece given inside out, stored flipped
-  bool convex = false;    ///< closed piece that is one convex patch
-  int patches = 0;        ///< convex patches (closed) or triangle leaves (soup)
-  int virtual_faces = 0;  ///< hull faces that are not input triangles
-  int hull_vertices = 0;  ///< vertices summed over patch hulls
-  int tree_depth = 0;     ///< depth of the hull (or triangle) hierarchy
+  int vertices = 0;         ///< input vertices
+  int triangles = 0;        ///< input triangles
+  bool flipped = false;     ///< closed piece given inside out, stored flipped
+  bool convex = false;      ///< closed piece that is one convex patch
+  int patches = 0;          ///< convex patches (closed) or triangle leaves (soup)
+  int virtual_faces = 0;    ///< hull faces that are not input triangles
+  int hull_vertices = 0;    ///< vertices summed over patch hulls
+  int tree_depth = 0;       ///< depth of the hull (or triangle) hierarchy
   bool from_cache = false;  ///< loaded from the cache file
-  double seconds = 0.0;   ///< wall time of preprocessing
+  double seconds = 0.0;     ///< wall time of preprocessing
 };
 
 /// Extents a piece may have: the largest side of the box of the vertices its
@@ -58,7 +58,13 @@ struct BuildOptions {
   /// Optional. A cancelled build returns InvalidOperation without a piece and writes
   /// no cache file (an existing one is left as it was).
   CancelCallback cancel;
+  /// Threads for the independent parts of the build (regions of the decomposition,
+  /// levels of the hull hierarchy); 0 = one per hardware thread. The piece and its
+  /// cache file are the same for every count. Callbacks run on the calling thread.
+  int threads = 0;
 };
+/// Largest BuildOptions::threads accepted.
+inline constexpr int kMaxBuildThreads = 256;
 
 class SC_API Piece {
  public:
@@ -87,8 +93,9 @@ SC_API bool knownKind(ModelKind kind);
 /// Closed polyhedron: every edge shared by exactly two triangles with opposite
 /// winding, no degenerate triangle, one connected shell; inside-out is flipped.
 /// Triangle soup: anything finite with valid indices.
-/// @return the piece; InvalidArgument (unknown kind, non-finite, bad index, extent
-///   outside [kMinPieceExtent, kMaxPieceExtent]) or InvalidGeometry (closed rules)
+/// @return the piece; InvalidArgument (unknown kind, threads outside [0,
+///   kMaxBuildThreads], non-finite, bad index, extent outside [kMinPieceExtent,
+///   kMaxPieceExtent]) or InvalidGeometry (closed rules)
 ///   without a piece; or the piece with a File warning when the cache file could not
 ///   be written, or passed its checksum but does not describe this input (then it is
 ///   rebuilt and rewritten; see docs/api.md).

@@ -289,9 +289,39 @@ std::uint64_t pieceInputHash(ModelKind kind, const MeshData& mesh) {
   return h;
 }
 
+namespace {
+
+/// Bytes Writer::putPolytope writes for `p`.
+std::size_t polytopeBytes(const ConvexPolytope& p) {
+  return 2 * sizeof(std::uint64_t) + p.vertices.size() * (3 * sizeof(double) + 4) +
+         p.faces.size() * 16;
+}
+
+/// Bytes of the payload encodePieceCache writes, so that the file is built in
+/// one buffer of its final size (a growing buffer and a copy took three times the
+/// file at the peak).
+std::size_t payloadBytes(const PieceData& data) {
+  std::size_t n = 1 + 4 + 3 * sizeof(std::uint64_t) + data.hierarchy.nodes.size() * 12;
+  for (const ConvexPolytope& p : data.patches) n += polytopeBytes(p);
+  for (const ConvexPolytope& p : data.hierarchy.hulls) n += polytopeBytes(p);
+  return n;
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const PieceData& data) {
-  std::vector<std::uint8_t> payload;
-  Writer w(payload);
+  const std::size_t payload_size = payloadBytes(data);
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(kHeaderSize + payload_size);
+  Writer w(bytes);
+  for (const char c : kMagic) w.put(c);
+  w.put(kPieceCacheVersion);
+  w.put(kEndianMarker);
+  w.put(static_cast<std::uint32_t>(data.kind));
+  w.put(std::uint32_t{0});
+  w.put(input_hash);
+  w.put(static_cast<std::uint64_t>(payload_size));
+  w.put(std::uint64_t{0});  // the checksum, once the payload is written
   w.put(static_cast<std::uint8_t>(data.stats.convex ? 1 : 0));
   w.put(static_cast<std::int32_t>(data.stats.virtual_faces));
   w.putCount(data.patches.size());
@@ -304,19 +334,8 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
   }
   w.putCount(data.hierarchy.hulls.size());
   for (const ConvexPolytope& p : data.hierarchy.hulls) w.putPolytope(p);
-
-  std::vector<std::uint8_t> bytes;
-  bytes.reserve(kHeaderSize + payload.size());
-  Writer h(bytes);
-  for (const char c : kMagic) h.put(c);
-  h.put(kPieceCacheVersion);
-  h.put(kEndianMarker);
-  h.put(static_cast<std::uint32_t>(data.kind));
-  h.put(std::uint32_t{0});
-  h.put(input_hash);
-  h.put(static_cast<std::uint64_t>(payload.size()));
-  h.put(fnv1a64(payload.data(), payload.size()));
-  bytes.insert(bytes.end(), payload.begin(), payload.end());
+  const std::uint64_t checksum = fnv1a64(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize);
+  std::memcpy(bytes.data() + kHeaderSize - sizeof(checksum), &checksum, sizeof(checksum));
   return bytes;
 }
 

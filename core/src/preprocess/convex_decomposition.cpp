@@ -20,6 +20,11 @@
 //     new vertex and a face of the last verified hull that the vertex sees lies
 //     inside the new hull, so a triangle reaching into it bans the face at once;
 //  5. seeds are taken next to finished patches, so patches tile the surface;
+//     patches grow within one region (median splits of the triangles' centres,
+//     at most kRegionTriangles each) while condition (2) still tests the whole
+//     mesh: a region's patches depend on it alone, so regions run in parallel
+//     and the result is the same for any thread count, and a patch's size, with
+//     the cost of its checks, is bounded, so the work grows linearly;
 //  6. a hull face that equals an input triangle of another patch is a model face
 //     too: it gets that triangle as face_source, so only faces off the surface
 //     count as virtual.
@@ -29,15 +34,19 @@
 // divides, the cell directly behind its own faces. A patch whose own triangles
 // are crossed by other triangles is therefore flat (usually one triangle).
 //
-// Departures from the paper: no patch merging or post-optimisation; the
-// tolerance is relative to the mesh size (patch_polytope.h).
+// Departures from the paper: no patch merging or post-optimisation; regions cut
+// patches at their borders; the tolerance is relative to the mesh size
+// (patch_polytope.h).
 #include "preprocess/convex_decomposition.h"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <thread>
 #include <utility>
 
 #include "geometry/aabb_tree.h"
@@ -92,6 +101,12 @@ const std::array<Vec3, 13>& outerDirections() {
   return directions;
 }
 
+/// Patches grow within regions of at most this many triangles (their hulls are still
+/// tested against the whole mesh). It bounds a patch's size, and with it the cost
+/// of its checks, so the work grows linearly with the mesh; and regions are
+/// independent, so they run in parallel.
+constexpr int kRegionTriangles = 8192;
+
 /// Planes of the largest faces kept among the outer planes.
 constexpr int kOuterFaces = 8;
 /// Face normals closer than this cosine count as one direction.
@@ -138,16 +153,53 @@ std::vector<Plane> outerPlanes(const ConvexPolytope& poly) {
   return planes;
 }
 
+/// Per-triangle data every region's worker reads; built once, then read-only.
+struct SharedMesh {
+  explicit SharedMesh(const MeshData& m) : mesh(m) {}
+  Status prepare();
+  void splitRegions(std::vector<int>& ids, int begin, int end, const std::vector<Vec3>& centres);
+  int regionCount() const { return static_cast<int>(region_start.size()) - 1; }
+
+  const MeshData& mesh;
+  double tol = 0.0;
+  TriangleAdjacency adjacency;
+  std::vector<Vec3> normals;
+  std::vector<double> offsets;
+  std::vector<std::array<char, 3>> convex_edge;
+  /// Directed edges (from << 32 | to) and their triangles, sorted, for triangleOf.
+  std::vector<std::pair<std::uint64_t, int>> edge_triangle;
+  AabbTree tree;
+  /// Regions: triangles region_start[r] .. region_start[r + 1] of region_order.
+  std::vector<int> region_of;
+  std::vector<int> region_order;
+  std::vector<int> region_start;
+};
+
+/// What one region's patch growth produced; patch indices are local to it.
+struct RegionResult {
+  std::vector<ConvexPolytope> patches;
+  int virtual_faces = 0;
+  Status status;
+};
+
+/// State every worker shares: the stop flag and the count of assigned triangles.
+struct SharedProgress {
+  std::atomic<bool> stop{false};
+  std::atomic<int> assigned{0};
+};
+
+/// Grows the patches of one region at a time; one object per thread. Writes only
+/// the entries of `triangle_patch` that belong to its current region, and reads
+/// no other region's entries, so workers on different regions never race.
 class Decomposer {
  public:
-  Decomposer(const MeshData& mesh, const ProgressCallback& progress, const CancelCallback& cancel)
-      : mesh_(mesh), progress_(progress), cancel_(cancel) {}
+  Decomposer(const SharedMesh& shared, std::vector<int>& triangle_patch, SharedProgress& state,
+             const ProgressCallback* progress, const CancelCallback* cancel);
 
-  Result<Decomposition> run();
+  bool tryWholeSurface(std::vector<ConvexPolytope>& patches);
+  Status decompose(int region, RegionResult& out);
 
  private:
-  Status prepare();
-  bool tryWholeSurface();
   Status growPatch(int seed, HullCheck mode);
   int nextSeed();
 
@@ -170,23 +222,26 @@ class Decomposer {
   PatchPolytope twoSided(int t) const;
   /// The input triangle running a -> b -> c (any rotation), or -1.
   int triangleOf(int a, int b, int c) const;
-  void reportProgress();
+  /// After each patch: reports progress and asks `cancel` when this worker runs on
+  /// the calling thread alone; true when the build is to stop.
+  bool pollStop();
 
+  const SharedMesh& shared_;
   const MeshData& mesh_;
-  const ProgressCallback& progress_;
-  const CancelCallback& cancel_;
-  double tol_ = 0.0;
-  TriangleAdjacency adjacency_;
-  std::vector<Vec3> normals_;
-  std::vector<double> offsets_;
-  std::vector<std::array<char, 3>> convex_edge_;
-  /// Directed edges (from << 32 | to) and their triangles, sorted, for triangleOf.
-  std::vector<std::pair<std::uint64_t, int>> edge_triangle_;
-  AabbTree tree_;
-
-  Decomposition result_;
-  int assigned_ = 0;
+  const double tol_;
+  const TriangleAdjacency& adjacency_;
+  const std::vector<Vec3>& normals_;
+  const std::vector<double>& offsets_;
+  const std::vector<std::array<char, 3>>& convex_edge_;
+  const AabbTree& tree_;
+  std::vector<int>& triangle_patch_;
+  SharedProgress& state_;
+  const ProgressCallback* progress_;  ///< null on worker threads
+  const CancelCallback* cancel_;      ///< null on worker threads
   double reported_ = -1.0;
+
+  int region_ = -1;
+  RegionResult* out_ = nullptr;
   std::deque<int> seeds_;
   int seed_scan_ = 0;
 
@@ -208,65 +263,113 @@ class Decomposer {
   std::vector<Plane> verified_planes_;
 };
 
-Status Decomposer::prepare() {
-  const int n = static_cast<int>(mesh_.triangles.size());
+Status SharedMesh::prepare() {
+  const int n = static_cast<int>(mesh.triangles.size());
   if (n < 4) return {ErrorCode::InvalidGeometry, "decomposition: fewer than four triangles"};
-  for (const Tri& f : mesh_.triangles) {
+  for (const Tri& f : mesh.triangles) {
     for (int k = 0; k < 3; ++k) {
-      if (f[k] < 0 || f[k] >= static_cast<int>(mesh_.vertices.size())) {
+      if (f[k] < 0 || f[k] >= static_cast<int>(mesh.vertices.size())) {
         return {ErrorCode::InvalidArgument, "decomposition: vertex index out of range"};
       }
       // Component-wise: Eigen's allFinite() computes x - x, which traps on infinity.
-      const Vec3& p = mesh_.vertices[f[k]];
+      const Vec3& p = mesh.vertices[f[k]];
       if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
         return {ErrorCode::InvalidArgument, "decomposition: non-finite vertex"};
       }
     }
   }
-  Result<TriangleAdjacency> adjacency = TriangleAdjacency::build(mesh_);
-  if (!adjacency.ok()) return adjacency.status();
-  adjacency_ = std::move(adjacency.value());
-  tol_ = decompositionTolerance(mesh_);
+  Result<TriangleAdjacency> built = TriangleAdjacency::build(mesh);
+  if (!built.ok()) return built.status();
+  adjacency = std::move(built.value());
+  tol = decompositionTolerance(mesh);
 
-  normals_.resize(n);
-  offsets_.resize(n);
+  normals.resize(n);
+  offsets.resize(n);
   std::vector<Aabb> boxes(n);
+  std::vector<Vec3> centres(n);
   for (int t = 0; t < n; ++t) {
-    const Tri& f = mesh_.triangles[t];
-    const Vec3 &a = mesh_.vertices[f[0]], &b = mesh_.vertices[f[1]], &c = mesh_.vertices[f[2]];
-    normals_[t] = normalizedOr((b - a).cross(c - a), Vec3::Zero());
-    if (normals_[t].isZero()) {
+    const Tri& f = mesh.triangles[t];
+    const Vec3 &a = mesh.vertices[f[0]], &b = mesh.vertices[f[1]], &c = mesh.vertices[f[2]];
+    normals[t] = normalizedOr((b - a).cross(c - a), Vec3::Zero());
+    if (normals[t].isZero()) {
       return {ErrorCode::InvalidGeometry, "decomposition: degenerate triangle"};
     }
-    offsets_[t] = normals_[t].dot(a);
+    offsets[t] = normals[t].dot(a);
     boxes[t].extend(a);
     boxes[t].extend(b);
     boxes[t].extend(c);
+    centres[t] = (a + b + c) / 3.0;
   }
-  convex_edge_.resize(n);
+  convex_edge.resize(n);
   for (int t = 0; t < n; ++t) {
     for (int k = 0; k < 3; ++k) {
-      const int g = adjacency_.neighbour(t, k);
-      const int apex = mesh_.triangles[g][(adjacency_.neighbourEdge(t, k) + 2) % 3];
-      convex_edge_[t][k] = normals_[t].dot(mesh_.vertices[apex]) - offsets_[t] <= tol_ ? 1 : 0;
+      const int g = adjacency.neighbour(t, k);
+      const int apex = mesh.triangles[g][(adjacency.neighbourEdge(t, k) + 2) % 3];
+      convex_edge[t][k] = normals[t].dot(mesh.vertices[apex]) - offsets[t] <= tol ? 1 : 0;
     }
   }
-  tree_ = AabbTree(boxes);
-  edge_triangle_.reserve(3 * static_cast<std::size_t>(n));
+  tree = AabbTree(boxes);
+  edge_triangle.reserve(3 * static_cast<std::size_t>(n));
   for (int t = 0; t < n; ++t) {
-    const Tri& f = mesh_.triangles[t];
+    const Tri& f = mesh.triangles[t];
     for (int k = 0; k < 3; ++k) {
-      edge_triangle_.emplace_back(
+      edge_triangle.emplace_back(
           static_cast<std::uint64_t>(f[k]) << 32 | static_cast<std::uint32_t>(f[(k + 1) % 3]), t);
     }
   }
-  std::sort(edge_triangle_.begin(), edge_triangle_.end());
+  std::sort(edge_triangle.begin(), edge_triangle.end());
+  region_order.resize(n);
+  for (int t = 0; t < n; ++t) region_order[t] = t;
+  region_start = {0};
+  splitRegions(region_order, 0, n, centres);
+  region_of.resize(n);
+  for (int r = 0; r < regionCount(); ++r) {
+    for (int i = region_start[r]; i < region_start[r + 1]; ++i) region_of[region_order[i]] = r;
+  }
+  return Status::success();
+}
+
+// Median splits of the centres along the box's longest side until a region has
+// at most kRegionTriangles: compact regions that depend on the mesh alone.
+void SharedMesh::splitRegions(std::vector<int>& ids, int begin, int end,
+                              const std::vector<Vec3>& centres) {
+  if (end - begin <= kRegionTriangles) {
+    region_start.push_back(end);
+    return;
+  }
+  Aabb box;
+  for (int i = begin; i < end; ++i) box.extend(centres[ids[i]]);
+  int axis = 0;
+  (box.max - box.min).maxCoeff(&axis);
+  const int mid = begin + (end - begin) / 2;
+  std::nth_element(ids.begin() + begin, ids.begin() + mid, ids.begin() + end, [&](int a, int b) {
+    const double ca = centres[a][axis], cb = centres[b][axis];
+    return ca != cb ? ca < cb : a < b;
+  });
+  splitRegions(ids, begin, mid, centres);
+  splitRegions(ids, mid, end, centres);
+}
+
+Decomposer::Decomposer(const SharedMesh& shared, std::vector<int>& triangle_patch,
+                       SharedProgress& state, const ProgressCallback* progress,
+                       const CancelCallback* cancel)
+    : shared_(shared),
+      mesh_(shared.mesh),
+      tol_(shared.tol),
+      adjacency_(shared.adjacency),
+      normals_(shared.normals),
+      offsets_(shared.offsets),
+      convex_edge_(shared.convex_edge),
+      tree_(shared.tree),
+      triangle_patch_(triangle_patch),
+      state_(state),
+      progress_(progress),
+      cancel_(cancel) {
+  const std::size_t n = mesh_.triangles.size();
   rank_.assign(n, -1);
   seen_.assign(n, -1);
   banned_.assign(n, -1);
   in_patch_.assign(mesh_.vertices.size(), 0);
-  result_.triangle_patch.assign(n, -1);
-  return Status::success();
 }
 
 bool Decomposer::pointBelowPatch(const Vec3& p) const {
@@ -356,8 +459,8 @@ void Decomposer::enqueueNeighbours(int t) {
   for (int k = 0; k < 3; ++k) {
     if (!convex_edge_[t][k]) continue;
     const int g = adjacency_.neighbour(t, k);
-    if (result_.triangle_patch[g] >= 0 || rank_[g] >= 0 || banned_[g] == serial_ ||
-        seen_[g] == epoch_) {
+    if (shared_.region_of[g] != region_ || triangle_patch_[g] >= 0 || rank_[g] >= 0 ||
+        banned_[g] == serial_ || seen_[g] == epoch_) {
       continue;
     }
     seen_[g] = epoch_;
@@ -530,7 +633,7 @@ Status Decomposer::growPatch(int seed, HullCheck mode) {
     while (!frontier_.empty()) {
       const int t = frontier_.front();
       frontier_.pop_front();
-      if (result_.triangle_patch[t] >= 0 || rank_[t] >= 0 || banned_[t] == serial_) continue;
+      if (triangle_patch_[t] >= 0 || rank_[t] >= 0 || banned_[t] == serial_) continue;
       if (!canJoin(t)) continue;
       if (swallows(t)) {
         banned_[t] = serial_;
@@ -571,15 +674,15 @@ PatchPolytope Decomposer::twoSided(int t) const {
 
 int Decomposer::triangleOf(int a, int b, int c) const {
   const std::uint64_t key = static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(b);
-  const auto it =
-      std::lower_bound(edge_triangle_.begin(), edge_triangle_.end(), std::make_pair(key, -1));
-  if (it == edge_triangle_.end() || it->first != key) return -1;
+  const auto it = std::lower_bound(shared_.edge_triangle.begin(), shared_.edge_triangle.end(),
+                                   std::make_pair(key, -1));
+  if (it == shared_.edge_triangle.end() || it->first != key) return -1;
   const Tri& f = mesh_.triangles[it->second];
   return f[0] == c || f[1] == c || f[2] == c ? it->second : -1;
 }
 
 void Decomposer::finishPatch(PatchPolytope patch) {
-  const int index = static_cast<int>(result_.patches.size());
+  const int index = static_cast<int>(out_->patches.size());
   ConvexPolytope& poly = patch.polytope;
   for (std::size_t f = 0; f < poly.faces.size(); ++f) {
     if (poly.face_source[f] >= 0) continue;
@@ -591,39 +694,45 @@ void Decomposer::finishPatch(PatchPolytope patch) {
     --patch.virtual_faces;
   }
   for (int t : faces_) {
-    result_.triangle_patch[t] = index;
-    for (int k = 0; k < 3; ++k) seeds_.push_back(adjacency_.neighbour(t, k));
+    triangle_patch_[t] = index;
+    for (int k = 0; k < 3; ++k) {
+      const int g = adjacency_.neighbour(t, k);
+      if (shared_.region_of[g] == region_) seeds_.push_back(g);
+    }
   }
-  assigned_ += static_cast<int>(faces_.size());
-  result_.virtual_faces += patch.virtual_faces;
-  result_.patches.push_back(std::move(patch.polytope));
+  state_.assigned += static_cast<int>(faces_.size());
+  out_->virtual_faces += patch.virtual_faces;
+  out_->patches.push_back(std::move(patch.polytope));
   truncate(0);
-  reportProgress();
 }
 
 int Decomposer::nextSeed() {
   while (!seeds_.empty()) {
     const int t = seeds_.front();
     seeds_.pop_front();
-    if (result_.triangle_patch[t] < 0) return t;
+    if (triangle_patch_[t] < 0) return t;
   }
-  const int n = static_cast<int>(mesh_.triangles.size());
-  while (seed_scan_ < n && result_.triangle_patch[seed_scan_] >= 0) ++seed_scan_;
-  return seed_scan_ < n ? seed_scan_ : -1;
+  const int end = shared_.region_start[region_ + 1];
+  while (seed_scan_ < end && triangle_patch_[shared_.region_order[seed_scan_]] >= 0) ++seed_scan_;
+  return seed_scan_ < end ? shared_.region_order[seed_scan_] : -1;
 }
 
-void Decomposer::reportProgress() {
-  if (!progress_) return;
-  const double fraction =
-      static_cast<double>(assigned_) / static_cast<double>(mesh_.triangles.size());
-  if (fraction - reported_ < 0.01 && fraction < 1.0) return;
-  reported_ = fraction;
-  progress_(fraction, "decompose");
+bool Decomposer::pollStop() {
+  if (progress_ && *progress_) {
+    const double fraction =
+        static_cast<double>(state_.assigned) / static_cast<double>(mesh_.triangles.size());
+    if (fraction - reported_ >= 0.01 || fraction >= 1.0) {
+      reported_ = fraction;
+      (*progress_)(fraction, "decompose");
+    }
+  }
+  if (cancel_ && *cancel_ && (*cancel_)()) state_.stop = true;
+  return state_.stop;
 }
 
 // A convex surface is one patch without virtual faces; buildPatchPolytope checks
 // condition (1) for every face on the hull of all vertices.
-bool Decomposer::tryWholeSurface() {
+bool Decomposer::tryWholeSurface(std::vector<ConvexPolytope>& patches) {
   for (const std::array<char, 3>& edges : convex_edge_) {
     if (!edges[0] || !edges[1] || !edges[2]) return false;
   }
@@ -634,39 +743,127 @@ bool Decomposer::tryWholeSurface() {
   }
   Result<PatchPolytope> whole =
       buildPatchPolytope(mesh_, adjacency_, PatchRef{faces_, rank_, n}, tol_);
-  if (!whole.ok() || whole.value().virtual_faces != 0) {
-    for (int t = 0; t < n; ++t) rank_[t] = -1;
-    faces_.clear();
-    return false;
-  }
-  for (int t = 0; t < n; ++t) {
-    result_.triangle_patch[t] = 0;
-    rank_[t] = -1;
-  }
+  for (int t = 0; t < n; ++t) rank_[t] = -1;
   faces_.clear();
-  result_.patches.push_back(std::move(whole.value().polytope));
-  assigned_ = n;
-  reportProgress();
+  if (!whole.ok() || whole.value().virtual_faces != 0) return false;
+  std::fill(triangle_patch_.begin(), triangle_patch_.end(), 0);
+  patches.push_back(std::move(whole.value().polytope));
+  state_.assigned = n;
   return true;
 }
 
-Result<Decomposition> Decomposer::run() {
-  if (Status s = prepare(); !s.ok()) return s;
-  if (progress_) progress_(0.0, "decompose");
-  if (!tryWholeSurface()) {
-    for (int seed = nextSeed(); seed >= 0; seed = nextSeed()) {
-      if (Status s = growPatch(seed, HullCheck::Quick); !s.ok()) return s;
-      if (cancel_ && cancel_()) return Status(ErrorCode::InvalidOperation, "build cancelled");
-    }
+Status Decomposer::decompose(int region, RegionResult& out) {
+  region_ = region;
+  out_ = &out;
+  seeds_.clear();
+  seed_scan_ = shared_.region_start[region];
+  for (int seed = nextSeed(); seed >= 0; seed = nextSeed()) {
+    if (Status s = growPatch(seed, HullCheck::Quick); !s.ok()) return s;
+    if (pollStop()) return Status(ErrorCode::InvalidOperation, "build cancelled");
   }
-  return std::move(result_);
+  return Status::success();
+}
+
+/// Runs the regions on `threads` threads (the calling one alone for 1), each
+/// region's result in its own slot, so the output does not depend on the count.
+class RegionRunner {
+ public:
+  RegionRunner(const SharedMesh& shared, std::vector<int>& triangle_patch,
+               const ProgressCallback& progress, const CancelCallback& cancel)
+      : shared_(shared),
+        triangle_patch_(triangle_patch),
+        progress_(progress),
+        cancel_(cancel),
+        results_(shared.regionCount()) {}
+
+  std::vector<RegionResult>& run(int threads) {
+    if (threads <= 1 || shared_.regionCount() == 1) {
+      work(&progress_, &cancel_);
+      return results_;
+    }
+    std::vector<std::thread> workers;
+    running_ = threads;
+    for (int i = 0; i < threads; ++i) workers.emplace_back([this] { work(nullptr, nullptr); });
+    // The caller's callbacks run on the calling thread only.
+    double reported = -1.0;
+    while (running_ > 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      const double fraction =
+          static_cast<double>(state_.assigned) / static_cast<double>(shared_.mesh.triangles.size());
+      if (progress_ && fraction - reported >= 0.01) {
+        reported = fraction;
+        progress_(fraction, "decompose");
+      }
+      if (cancel_ && cancel_()) state_.stop = true;
+    }
+    for (std::thread& worker : workers) worker.join();
+    return results_;
+  }
+
+ private:
+  void work(const ProgressCallback* progress, const CancelCallback* cancel) {
+    Decomposer decomposer(shared_, triangle_patch_, state_, progress, cancel);
+    for (int r = next_++; r < shared_.regionCount() && !state_.stop; r = next_++) {
+      results_[r].status = decomposer.decompose(r, results_[r]);
+      if (!results_[r].status.ok()) state_.stop = true;
+    }
+    --running_;
+  }
+
+  const SharedMesh& shared_;
+  std::vector<int>& triangle_patch_;
+  const ProgressCallback& progress_;
+  const CancelCallback& cancel_;
+  std::vector<RegionResult> results_;
+  SharedProgress state_;
+  std::atomic<int> next_{0};
+  std::atomic<int> running_{0};
+};
+
+/// The first region's failure, preferring a real error to the stops it caused.
+Status firstFailure(const std::vector<RegionResult>& results) {
+  Status stopped;
+  for (const RegionResult& r : results) {
+    if (r.status.ok()) continue;
+    if (r.status.code() != ErrorCode::InvalidOperation) return r.status;
+    if (stopped.ok()) stopped = r.status;
+  }
+  return stopped;
 }
 
 }  // namespace
 
 Result<Decomposition> decomposeConvexSurface(const MeshData& mesh, const ProgressCallback& progress,
-                                             const CancelCallback& cancel) {
-  return Decomposer(mesh, progress, cancel).run();
+                                             const CancelCallback& cancel, int threads) {
+  SharedMesh shared(mesh);
+  if (Status s = shared.prepare(); !s.ok()) return s;
+  if (progress) progress(0.0, "decompose");
+  Decomposition result;
+  result.triangle_patch.assign(mesh.triangles.size(), -1);
+  {
+    SharedProgress state;
+    Decomposer whole(shared, result.triangle_patch, state, nullptr, nullptr);
+    if (whole.tryWholeSurface(result.patches)) {
+      if (progress) progress(1.0, "decompose");
+      return result;
+    }
+  }
+  RegionRunner runner(shared, result.triangle_patch, progress, cancel);
+  std::vector<RegionResult>& regions = runner.run(threads);
+  if (Status s = firstFailure(regions); !s.ok()) return s;
+  if (cancel && cancel()) return Status(ErrorCode::InvalidOperation, "build cancelled");
+  // Region r's patches follow those of the regions before it.
+  std::vector<int> base(regions.size() + 1, 0);
+  for (std::size_t r = 0; r < regions.size(); ++r) {
+    base[r + 1] = base[r] + static_cast<int>(regions[r].patches.size());
+    result.virtual_faces += regions[r].virtual_faces;
+    for (ConvexPolytope& patch : regions[r].patches) result.patches.push_back(std::move(patch));
+  }
+  for (std::size_t t = 0; t < result.triangle_patch.size(); ++t) {
+    result.triangle_patch[t] += base[shared.region_of[t]];
+  }
+  if (progress) progress(1.0, "decompose");
+  return result;
 }
 
 }  // namespace sc::detail

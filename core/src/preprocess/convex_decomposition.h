@@ -21,8 +21,10 @@ struct Decomposition {
 
 /// Decomposes a validated, outward-oriented closed piece. A convex piece gives one
 /// patch. `progress` and `cancel` may be empty; `cancel` is asked after each patch
-/// and stops the work with InvalidOperation.
+/// and stops the work with InvalidOperation. Patches grow within spatial regions
+/// of the mesh, on `threads` threads (at least one); the result is the same for
+/// every thread count. Both callbacks run on the calling thread only.
 Result<Decomposition> decomposeConvexSurface(const MeshData& mesh, const ProgressCallback& progress,
-                                             const CancelCallback& cancel = {});
+                                             const CancelCallback& cancel = {}, int threads = 1);
 
 }  // namespace sc::detail

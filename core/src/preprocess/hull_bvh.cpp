@@ -14,7 +14,9 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
+#include <thread>
 #include <utility>
 
 #include "preprocess/convex_hull.h"
@@ -85,10 +87,13 @@ ConvexPolytope flatHull(const std::vector<Vec3>& points, const std::vector<int>&
   return pointSet(kept, kept_original);
 }
 
+/// Inner nodes of one depth whose hulls are built by one thread.
+constexpr int kMinNodesPerThread = 64;
+
 class Builder {
  public:
-  Builder(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress)
-      : leaves_(leaves), progress_(progress) {}
+  Builder(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress, int threads)
+      : leaves_(leaves), progress_(progress), threads_(std::max(1, threads)) {}
 
   HullBvh run() {
     const int n = static_cast<int>(leaves_.size());
@@ -100,15 +105,18 @@ class Builder {
       centres_.push_back(leaves_[i].center);
     }
     bvh_.nodes.reserve(2 * leaves_.size() - 1);
-    bvh_.hulls.reserve(leaves_.size() - 1);
+    bvh_.hulls.resize(leaves_.size() - 1);
     inner_total_ = n - 1;
-    build(0, n);
+    split(0, n, 0);
+    buildHulls();
     finishHullBvh(leaves_, bvh_);
     return std::move(bvh_);
   }
 
  private:
-  int build(int begin, int end) {
+  /// Top-down: the nodes in pre-order, hull indices in post-order, inner nodes
+  /// listed by depth for the bottom-up pass.
+  int split(int begin, int end, int depth) {
     const int index = static_cast<int>(bvh_.nodes.size());
     bvh_.nodes.emplace_back();
     if (end - begin == 1) {
@@ -122,14 +130,43 @@ class Builder {
                        const double da = axis.dot(centres_[a]), db = axis.dot(centres_[b]);
                        return da != db ? da < db : a < b;
                      });
-    const int left = build(begin, mid);
-    const int right = build(mid, end);
+    const int left = split(begin, mid, depth + 1);
+    const int right = split(mid, end, depth + 1);
     bvh_.nodes[index].left = left;
     bvh_.nodes[index].right = right;
-    bvh_.nodes[index].polytope = static_cast<int>(bvh_.hulls.size());
-    bvh_.hulls.push_back(hullOf(left, right));
-    reportProgress();
+    bvh_.nodes[index].polytope = next_hull_++;
+    if (static_cast<int>(levels_.size()) <= depth) levels_.resize(depth + 1);
+    levels_[depth].push_back(index);
     return index;
+  }
+
+  /// Bottom-up, one depth at a time: the hulls of one depth depend only on deeper
+  /// ones, and each goes to its own slot, so threads do not change the result.
+  void buildHulls() {
+    for (auto level = levels_.rbegin(); level != levels_.rend(); ++level) {
+      const std::vector<int>& nodes = *level;
+      const int count = static_cast<int>(nodes.size());
+      const int threads = std::min(threads_, std::max(1, count / kMinNodesPerThread));
+      std::vector<std::thread> helpers;
+      for (int i = 1; i < threads; ++i) {
+        helpers.emplace_back([this, &nodes, i, threads] { buildNodes(nodes, i, threads, false); });
+      }
+      buildNodes(nodes, 0, threads, true);
+      for (std::thread& helper : helpers) helper.join();
+      reportProgress(true);
+    }
+  }
+
+  /// Hulls of nodes[first], nodes[first + stride], ...; only the calling thread
+  /// (`report`) reports progress.
+  void buildNodes(const std::vector<int>& nodes, int first, int stride, bool report) {
+    std::vector<Keyed> keyed;
+    for (std::size_t k = first; k < nodes.size(); k += stride) {
+      const HullBvhNode& node = bvh_.nodes[nodes[k]];
+      bvh_.hulls[node.polytope] = hullOf(node.left, node.right, keyed);
+      ++inner_done_;
+      if (report) reportProgress(false);
+    }
   }
 
   const ConvexPolytope& polytopeOf(int node) const {
@@ -137,27 +174,32 @@ class Builder {
     return n.leaf() ? leaves_[n.polytope] : bvh_.hulls[n.polytope];
   }
 
+  struct Keyed {
+    int original;
+    const Vec3* point;
+  };
+
   /// Hull of the children's vertices, each input vertex once.
-  ConvexPolytope hullOf(int left, int right) {
-    keyed_.clear();
+  ConvexPolytope hullOf(int left, int right, std::vector<Keyed>& keyed) const {
+    keyed.clear();
     for (const int child : {left, right}) {
       const ConvexPolytope& p = polytopeOf(child);
       for (std::size_t i = 0; i < p.vertices.size(); ++i) {
         const int id = i < p.original.size() ? p.original[i] : -1;
-        keyed_.push_back({id, &p.vertices[i]});
+        keyed.push_back({id, &p.vertices[i]});
       }
     }
     // Shared input vertices once: same original index and the same point.
-    std::stable_sort(keyed_.begin(), keyed_.end(),
+    std::stable_sort(keyed.begin(), keyed.end(),
                      [](const Keyed& a, const Keyed& b) { return a.original < b.original; });
     std::vector<Vec3> points;
     std::vector<int> original;
-    for (std::size_t k = 0; k < keyed_.size(); ++k) {
-      if (k > 0 && keyed_[k].original == keyed_[k - 1].original &&
-          *keyed_[k].point == *keyed_[k - 1].point)
+    for (std::size_t k = 0; k < keyed.size(); ++k) {
+      if (k > 0 && keyed[k].original == keyed[k - 1].original &&
+          *keyed[k].point == *keyed[k - 1].point)
         continue;
-      points.push_back(*keyed_[k].point);
-      original.push_back(keyed_[k].original);
+      points.push_back(*keyed[k].point);
+      original.push_back(keyed[k].original);
     }
     if (static_cast<int>(points.size()) <= kPointSetLimit) return pointSet(points, original);
     Result<ConvexPolytope> hull = convexHull(points, original);
@@ -165,35 +207,35 @@ class Builder {
     return flatHull(points, original);
   }
 
-  void reportProgress() {
-    ++inner_done_;
+  void reportProgress(bool level_done) {
     if (!progress_) return;
-    const double fraction = static_cast<double>(inner_done_) / inner_total_;
-    if (fraction - reported_ < 0.01 && inner_done_ < inner_total_) return;
+    const int done = inner_done_;
+    const double fraction = static_cast<double>(done) / inner_total_;
+    const bool last = level_done && done == inner_total_;
+    if (fraction - reported_ < 0.01 && !last) return;
+    if (fraction <= reported_) return;
     reported_ = fraction;
     progress_(fraction, "hierarchy");
   }
 
-  struct Keyed {
-    int original;
-    const Vec3* point;
-  };
-
   const std::vector<ConvexPolytope>& leaves_;
   const ProgressCallback& progress_;
+  const int threads_;
   std::vector<int> order_;
   std::vector<Vec3> centres_;
-  std::vector<Keyed> keyed_;
+  std::vector<std::vector<int>> levels_;  ///< inner nodes per depth
   HullBvh bvh_;
+  int next_hull_ = 0;
   int inner_total_ = 0;
-  int inner_done_ = 0;
+  std::atomic<int> inner_done_{0};
   double reported_ = 0.0;
 };
 
 }  // namespace
 
-HullBvh buildHullBvh(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress) {
-  return Builder(leaves, progress).run();
+HullBvh buildHullBvh(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress,
+                     int threads) {
+  return Builder(leaves, progress, threads).run();
 }
 
 bool finishHullBvh(const std::vector<ConvexPolytope>& leaves, HullBvh& bvh) {

@@ -39,8 +39,10 @@ struct HullBvh {
 
 /// Builds the hierarchy top-down by median splits along the principal axis of the
 /// leaves' centres, then the inner polytopes bottom-up (qhull). `progress` (may be
-/// empty) gets fractions in [0, 1], throttled. Deterministic.
-HullBvh buildHullBvh(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress);
+/// empty) gets fractions in [0, 1], throttled, on the calling thread. Each depth's
+/// hulls are built on up to `threads` threads; the result is the same for any count.
+HullBvh buildHullBvh(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress,
+                     int threads = 1);
 
 /// Fills `leaf_node`, `depth` and every node's bounding sphere from `nodes`, `hulls`
 /// and `leaves`, after checking the structure: a binary tree rooted at 0 in which

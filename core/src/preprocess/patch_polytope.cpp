@@ -469,9 +469,9 @@ bool Builder::areaMatches() const {
   return std::abs(faces - hull) <= kAreaTolerance * hull;
 }
 
-// The prism under a virtual face that looks the patch's way, from kFlatFactor to
-// kProbeDepth tolerances deep, bounded by planes through the face's edges
-// perpendicular to it. Flat patches use the patch's plane (their pockets' own
+// The prism under a virtual face that looks the patch's way, from kFlatFactor
+// tolerances deep (high for flat patches) to kProbeDepth tolerances deep, bounded by planes through
+// the face's edges perpendicular to it. Flat patches use the patch's plane (their pockets' own
 // normals may be noise); thin hulls the face's plane.
 void Builder::addProbes() {
   if (!out_.flat && thickness_ >= 2.0 * kProbeDepth * tol_) return;
@@ -487,7 +487,11 @@ void Builder::addProbes() {
     }
     const double top = std::max({n.dot(a), n.dot(b), n.dot(c)});
     std::array<Plane, 5> prism;
-    prism[0] = {n, top - kFlatFactor * tol_};
+    // A flat patch's prism starts above its plane: a triangle of that plane left in
+    // a pocket (the patch did not take it, e.g. it is in another region) is refused.
+    // Such a triangle may end at a convex edge whose wall goes down along the seam
+    // of two pockets' prisms, seen by neither, with air under the pocket.
+    prism[0] = {n, top + (out_.flat ? kFlatFactor : -kFlatFactor) * tol_};
     prism[1] = {-n, -(top - kProbeDepth * tol_)};
     const Vec3* corners[3] = {&a, &b, &c};
     for (int k = 0; k < 3; ++k) {

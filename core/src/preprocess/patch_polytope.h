@@ -51,8 +51,10 @@ struct PatchPolytope {
   std::vector<Plane> planes;
   /// Flat or thin hulls have (almost) no interior to test. Instead, under each
   /// virtual face that looks the patch's way (a pocket in the patch's outline) the
-  /// solid must go on: these prisms, from kFlatFactor to kProbeDepth tolerances
-  /// under the face, must meet no triangle outside the patch.
+  /// solid must go on: these prisms, to kProbeDepth tolerances under the face and
+  /// from kFlatFactor tolerances under it (thin hulls) or above it (flat patches,
+  /// so that a triangle of the patch's plane left in a pocket is refused too), must
+  /// meet no triangle outside the patch.
   std::vector<std::array<Plane, 5>> probes;
 };
 

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -91,20 +92,27 @@ void buildSoupLeaves(PieceData& data) {
   data.stats.hull_vertices = 3 * data.stats.patches;
 }
 
+/// Threads to build with: BuildOptions::threads, or for 0 one per hardware thread.
+int threadCount(const BuildOptions& options) {
+  if (options.threads > 0) return options.threads;
+  const int hardware = static_cast<int>(std::thread::hardware_concurrency());
+  return std::clamp(hardware, 1, kMaxBuildThreads);
+}
+
 bool cancelled(const BuildOptions& options) { return options.cancel && options.cancel(); }
 
 Status cancelledStatus() { return {ErrorCode::InvalidOperation, "build cancelled"}; }
 
 /// Closed piece, already validated and oriented: its convex patches.
-Status buildPatches(PieceData& data, const ProgressCallback& progress,
-                    const CancelCallback& cancel) {
+Status buildPatches(PieceData& data, const ProgressCallback& progress, const CancelCallback& cancel,
+                    int threads) {
   if (progress) progress(0.0, "decompose");
   if (detail::isConvex(data.mesh)) {
     data.patches.push_back(convexPatch(data.mesh));
     data.stats.convex = true;
   } else {
     Result<detail::Decomposition> decomposition =
-        detail::decomposeConvexSurface(data.mesh, progress, cancel);
+        detail::decomposeConvexSurface(data.mesh, progress, cancel, threads);
     if (!decomposition.ok()) return decomposition.status();
     data.patches = std::move(decomposition.value().patches);
     data.stats.virtual_faces = decomposition.value().virtual_faces;
@@ -119,16 +127,18 @@ Status buildPatches(PieceData& data, const ProgressCallback& progress,
 /// Leaves (patches or soup triangles), then the hierarchy over them.
 Status preprocess(PieceData& data, const BuildOptions& options) {
   const ProgressCallback& progress = options.progress;
+  const int threads = threadCount(options);
   if (data.kind == ModelKind::ClosedPolyhedron) {
     const ProgressCallback stage = subRange(progress, kDecompositionStart, kHierarchyStart);
-    if (Status s = buildPatches(data, stage, options.cancel); !s.ok()) return s;
+    if (Status s = buildPatches(data, stage, options.cancel, threads); !s.ok()) return s;
   } else {
     buildSoupLeaves(data);
   }
   if (cancelled(options)) return cancelledStatus();
   const double from =
       data.kind == ModelKind::ClosedPolyhedron ? kHierarchyStart : kDecompositionStart;
-  data.hierarchy = detail::buildHullBvh(data.patches, subRange(progress, from, kHierarchyEnd));
+  data.hierarchy =
+      detail::buildHullBvh(data.patches, subRange(progress, from, kHierarchyEnd), threads);
   data.stats.tree_depth = data.hierarchy.depth;
   // Last chance before the cache file: a cancelled build writes nothing.
   return cancelled(options) ? cancelledStatus() : Status::success();
@@ -147,6 +157,9 @@ Status refusedCache(const std::string& path, const std::string& reason, const St
 Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (!knownKind(kind)) return Status(ErrorCode::InvalidArgument, "unknown ModelKind");
+  if (options.threads < 0 || options.threads > kMaxBuildThreads) {
+    return Status(ErrorCode::InvalidArgument, "BuildOptions::threads outside [0, 256]");
+  }
   if (options.progress) options.progress(0.0, "validating piece");
   if (Status s = detail::validateArrays(mesh); !s.ok()) return s;
 

@@ -3,6 +3,7 @@
 // piece, and leaves the cache file as it was (absent or untouched).
 #include <gtest/gtest.h>
 
+#include <dirent.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,6 +32,22 @@ bool exists(const std::string& path) { return std::ifstream(path).good(); }
 std::string readText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Files beside `path` whose names start with its name and are not it: temporaries
+/// of a cache file write (path + ".tmp...").
+std::vector<std::string> leftovers(const std::string& path) {
+  const std::size_t slash = path.rfind('/');
+  const std::string dir = path.substr(0, slash), name = path.substr(slash + 1);
+  std::vector<std::string> found;
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) return found;
+  while (const dirent* entry = ::readdir(d)) {
+    const std::string other = entry->d_name;
+    if (other != name && other.compare(0, name.size(), name) == 0) found.push_back(other);
+  }
+  ::closedir(d);
+  return found;
 }
 
 /// Removes the file when the test ends.
@@ -66,6 +83,7 @@ TEST(BuildCancel, UncancelledBuildWritesTheCacheFile) {
   EXPECT_GT(built.value()->stats().patches, 1);
   EXPECT_EQ(highest, 1.0);
   EXPECT_TRUE(exists(file.path));
+  EXPECT_TRUE(leftovers(file.path).empty());
 }
 
 TEST(BuildCancel, CancelDuringTheDecompositionStopsThereAndWritesNothing) {
@@ -79,6 +97,34 @@ TEST(BuildCancel, CancelDuringTheDecompositionStopsThereAndWritesNothing) {
   EXPECT_GE(highest, 0.3);
   EXPECT_LT(highest, 0.85);
   EXPECT_FALSE(exists(file.path));
+  EXPECT_TRUE(leftovers(file.path).empty());
+}
+
+TEST(BuildCancel, CancelOnTwoThreadsStopsTheWorkersAndWritesNothing) {
+  const TempFile file("threads.bvh");
+  double highest = 0.0;
+  BuildOptions options = cancelAt(0.3, file.path, highest);
+  options.threads = 2;
+  // Two regions, so both threads have work when the cancel comes.
+  const Result<PiecePtr> built =
+      buildPiece(ModelKind::ClosedPolyhedron, samples::torusMesh(1.0, 0.3, 100, 50), options);
+  ASSERT_FALSE(built.hasValue());
+  EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+  EXPECT_LT(highest, 0.85);
+  EXPECT_FALSE(exists(file.path));
+  EXPECT_TRUE(leftovers(file.path).empty());
+}
+
+TEST(BuildCancel, CancelDuringTheHierarchyWritesNothing) {
+  const TempFile file("late.bvh");
+  double highest = 0.0;
+  const Result<PiecePtr> built =
+      buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.9, file.path, highest));
+  ASSERT_FALSE(built.hasValue());
+  EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+  EXPECT_GE(highest, 0.9);
+  EXPECT_FALSE(exists(file.path));
+  EXPECT_TRUE(leftovers(file.path).empty());
 }
 
 TEST(BuildCancel, CancelBeforeTheWorkFailsForEveryKind) {
@@ -102,6 +148,7 @@ TEST(BuildCancel, ExistingCacheFileIsLeftAsItWas) {
       buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.5, file.path, highest));
   ASSERT_FALSE(built.hasValue());
   EXPECT_EQ(readText(file.path), stale);
+  EXPECT_TRUE(leftovers(file.path).empty());
 }
 
 }  // namespace

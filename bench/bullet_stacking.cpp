@@ -212,7 +212,7 @@ Scene pile(const ShapeSet& torus, const ShapeSet& bowl, const sc::samples::BowlI
   s.container_depth = &depth;
   s.ground_top = -kBowlOuter - 0.05;
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * sc::kPi);
   for (int i = 0; i < 24; ++i) {
     const int layer = i / 4, k = i % 4;
     const btVector3 at(btScalar(k % 2 ? 0.3 : -0.3), btScalar(-0.6 + 0.6 * layer),

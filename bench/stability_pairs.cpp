@@ -16,7 +16,7 @@
 namespace stab {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
+using sc::kPi;
 constexpr int kApproachSteps = 40;
 constexpr int kSettleUpdates = 10;  // further updates at the final pose: the proxy's steady answer
 

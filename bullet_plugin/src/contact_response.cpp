@@ -12,7 +12,7 @@ namespace sc::bullet::detail {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
+constexpr double kTwoPi = 2.0 * kPi;
 
 btVector3 toBt(const Vec3& v) {
   return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));

@@ -18,7 +18,7 @@ namespace sc::bullet {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
+constexpr double kTwoPi = 2.0 * kPi;
 
 btVector3 toBt(const Vec3& v) {
   return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
@@ -126,19 +126,22 @@ void makeSide(const btCollisionObjectWrapper* w, const Model* model, Side& s) {
 /// segment (target radius rt, opponent ro); the surfaces are R = rt + ro closer along
 /// the normal. Apart within R becomes a depth R - d along the normal; a depth of the
 /// cores grows by R, its contact centre moves out by R.
-void inflate(DirectedResult& r, double rt, double ro) {
+void inflate(DirectedResult& r, double rt, double ro, double tolerance) {
   const double rr = rt + ro;
   if (r.code != ErrorCode::Ok || rr <= 0.0) return;
   r.point_on_target -= rt * r.normal;
   r.point_on_opponent += ro * r.normal;
   if (r.distance > rr) {
     r.distance -= rr;
+    if (r.status == DirectionStatus::Separated && r.distance <= tolerance)
+      r.status = DirectionStatus::Touching;
     return;
   }
   const Vec3 current = r.contact_position + r.tpdv;
   r.tpdv = r.distance > 0.0 ? Vec3((r.distance - rr) * r.normal) : Vec3(r.tpdv - rr * r.normal);
   r.distance = -r.tpdv.norm();
   r.contact_position = current - r.tpdv;
+  if (r.status != DirectionStatus::Lagging) r.status = DirectionStatus::Penetrating;
 }
 
 /// Scalar moment of a side's body (trace / 3 of the world inertia), 0 when static.
@@ -572,7 +575,8 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   dirs.b_target = sides[1].dynamic || closest_points_;
   DirectedResult out[2];
   tracker_.update(sides[0].view, sides[1].view, dirs, query, out);
-  for (int dir = 0; dir < 2; ++dir) inflate(out[dir], sides[dir].radius, sides[1 - dir].radius);
+  for (int dir = 0; dir < 2; ++dir)
+    inflate(out[dir], sides[dir].radius, sides[1 - dir].radius, query.tolerance);
   rememberQuery(wraps, out, dirs);
 
   rows_kept_ = false;
@@ -598,7 +602,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
     input.rotation_mode = RotationMode::Input;
     rows_tracker_.update(sides[0].view, sides[1].view, dirs, input, input_out);
     for (int dir = 0; dir < 2; ++dir)
-      inflate(input_out[dir], sides[dir].radius, sides[1 - dir].radius);
+      inflate(input_out[dir], sides[dir].radius, sides[1 - dir].radius, input.tolerance);
     rows_out = input_out;
   }
   DirectionState state{*plugin_, tracker_,   rows_out == out ? tracker_ : rows_tracker_,

@@ -13,7 +13,6 @@ namespace sc::bullet {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 Vec3 toVec(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
 btVector3 toBt(const Vec3& v) {

@@ -110,6 +110,18 @@ inline constexpr SCenum SC_CONTACT_ORIENTATION = 0x0710;  // 4 reals {s, vx, vy,
 inline constexpr SCenum SC_CONTACT_POINT_COUNT = 0x0711;  // 1 int
 inline constexpr SCenum SC_CONTACT_POINTS = 0x0712;  // 10 reals per contact: point on target,
                                                      // point on opponent, normal, separation
+// Extension: what the direction's update found (1 int, one of SC_DIRECTION_*; any
+// SC_STATUS_RESULT): touching and penetrating told apart, a lagging proxy flagged.
+inline constexpr SCenum SC_DIRECTION_STATUS = 0x0713;
+
+// Direction statuses (sc::DirectionStatus).
+inline constexpr SCenum SC_DIRECTION_NOT_COMPUTED = 0x0901;
+inline constexpr SCenum SC_DIRECTION_BEYOND_MAX_DISTANCE = 0x0902;
+inline constexpr SCenum SC_DIRECTION_FIRST_SEEN_INTERSECTING = 0x0903;
+inline constexpr SCenum SC_DIRECTION_SEPARATED = 0x0904;
+inline constexpr SCenum SC_DIRECTION_TOUCHING = 0x0905;
+inline constexpr SCenum SC_DIRECTION_PENETRATING = 0x0906;
+inline constexpr SCenum SC_DIRECTION_LAGGING = 0x0907;
 
 // Feature types.
 inline constexpr SCenum SC_FEATURE_VERTEX = 0x0801;

@@ -23,7 +23,7 @@ namespace {
 
 constexpr double kMetresPerPixel = 0.0005;
 constexpr double kWheelStep = 0.005;
-constexpr double kKeyAngle = 5.0 * 3.14159265358979323846 / 180.0;
+constexpr double kKeyAngle = 5.0 * kPi / 180.0;
 
 class MouseDevice;
 MouseDevice* g_mouse = nullptr;

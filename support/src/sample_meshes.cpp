@@ -6,9 +6,6 @@
 #include <cstddef>
 
 namespace sc::samples {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 MeshData bowlMesh(double inner, double outer, int rings, int segments) {
   MeshData m;

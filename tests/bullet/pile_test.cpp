@@ -114,7 +114,7 @@ Pile dropPile(BulletWorld& w) {
   pile.bowl_depth = std::make_shared<samples::BowlInnerDepth>(bowl_mesh, kBowlInner, kBowlOuter,
                                                               kBowlRings, kBowlSegments);
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * kPi);
   for (int i = 0; i < kBodies; ++i) {
     const int layer = i / 4, k = i % 4;
     const btVector3 at(btScalar((k % 2 ? 0.3 : -0.3)), btScalar(-0.6 + 0.6 * layer),
@@ -240,7 +240,7 @@ std::vector<btVector3> torusSamples() {
   constexpr int kAround = 256, kTube = 64;  // 6 mm apart: a cap between them is missed by < 0.2 mm
   for (int i = 0; i < kAround; ++i)
     for (int j = 0; j < kTube; ++j) {
-      const double u = 6.283185307179586 * i / kAround, v = 6.283185307179586 * j / kTube;
+      const double u = 2.0 * kPi * i / kAround, v = 2.0 * kPi * j / kTube;
       const double r = kMajor + kMinor * std::cos(v);
       out.emplace_back(btScalar(r * std::cos(u)), btScalar(kMinor * std::sin(v)),
                        btScalar(r * std::sin(u)));

@@ -27,7 +27,6 @@ using bullet::CouplingWrench;
 using bullet::PoseScript;
 using bullet::VirtualCoupling;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kHz = 1000.0;
 constexpr double kHalf = 0.05;  // box half extent [m]
 

@@ -85,4 +85,32 @@ TEST(ContactPointsStatus, OnListsTheContactOfBothDirections) {
   }
 }
 
+// SC_DIRECTION_STATUS (extension): the pressed cube penetrates; above the other cube
+// it is separated; set down within the tolerance (1e-3) of it, it touches; the static
+// group's direction is not computed. (Exactly flush, distance 0 and no depth: the
+// unit test of DirectedResult::status.)
+TEST(DirectionStatus, TellsTouchingFromPenetrating) {
+  PressedCubes s(false);
+  SCint status = -1;
+  ASSERT_EQ(s.manager.GetStatus(SC_DIRECTION_STATUS, &status, 0, false), SC_NO_ERROR);
+  EXPECT_EQ(status, SC_DIRECTION_PENETRATING);
+  const double above[3] = {0.2, 0.1, 1.5};
+  ASSERT_EQ(s.manager.SetTransformation(1, SC_POSITION_ORIGIN, above), SC_NO_ERROR);
+  ASSERT_EQ(s.manager.UpdateStatus(), SC_NO_ERROR);
+  ASSERT_EQ(s.manager.GetStatus(SC_DIRECTION_STATUS, &status, 0, false), SC_NO_ERROR);
+  EXPECT_EQ(status, SC_DIRECTION_SEPARATED);
+  const double resting[3] = {0.2, 0.1, 1.0002};
+  ASSERT_EQ(s.manager.SetTransformation(1, SC_POSITION_ORIGIN, resting), SC_NO_ERROR);
+  ASSERT_EQ(s.manager.UpdateStatus(), SC_NO_ERROR);
+  ASSERT_EQ(s.manager.GetStatus(SC_DIRECTION_STATUS, &status, 0, false), SC_NO_ERROR);
+  EXPECT_EQ(status, SC_DIRECTION_TOUCHING);
+  double distance = 1.0;
+  ASSERT_EQ(s.manager.GetStatus(SC_DISTANCE, &distance, 0, false), SC_NO_ERROR);
+  EXPECT_NEAR(distance, 2e-4, 1e-9);
+  ASSERT_EQ(s.manager.GetStatus(SC_DIRECTION_STATUS, &status, 0, true), SC_NO_ERROR);
+  EXPECT_EQ(status, SC_DIRECTION_NOT_COMPUTED);
+  float wrong = 0;
+  EXPECT_EQ(s.manager.GetStatus(SC_DIRECTION_STATUS, &wrong, 0, false), SC_ERROR_INVALID_ARGUMENT);
+}
+
 }  // namespace

@@ -108,6 +108,15 @@ inline void checkDirection(SCSceneManager& scene, SCint index, bool reverse) {
   SCint groups[2];
   if (scene.GetStatus(SC_GROUP_ID, groups, index, reverse) != SC_NO_ERROR)
     fail("GetStatus(SC_GROUP_ID) failed");
+  SCint status = -1;
+  if (scene.GetStatus(SC_DIRECTION_STATUS, &status, index, reverse) != SC_NO_ERROR)
+    fail("GetStatus(SC_DIRECTION_STATUS) failed");
+  const bool status_fits =
+      code == SC_ERROR_NO_RESULT ? status == SC_DIRECTION_BEYOND_MAX_DISTANCE
+      : code == SC_ERROR_INVALID_INITIAL_TRANSFORMATION
+          ? status == SC_DIRECTION_FIRST_SEEN_INTERSECTING
+          : status >= SC_DIRECTION_SEPARATED && status <= SC_DIRECTION_LAGGING;
+  if (!status_fits) fail("SC_DIRECTION_STATUS disagrees with SC_STATUS_RESULT", status);
   SCint contact_count = -1;
   if (scene.GetStatus(SC_CONTACT_POINT_COUNT, &contact_count, index, reverse) != SC_NO_ERROR ||
       contact_count < 0)

@@ -80,7 +80,7 @@ Result<double> staticBoxDistance(const Quat& q) {
 TEST(EntryPointValidation, AddObjectNormalisesTheQuaternionAsSetGroupPlacementDoes) {
   // A quarter turn about z leaves the box where it was: the boxes are 1.5 apart
   // whatever the quaternion's scale (unnormalised, it would shear the box).
-  const Quat quarter(Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Vec3::UnitZ()));
+  const Quat quarter(Eigen::AngleAxisd(0.5 * kPi, Vec3::UnitZ()));
   for (const double scale : {1.0, 0.5, 2.0, 1e-200, 1e200}) {
     const Result<double> d = staticBoxDistance(Quat(quarter.coeffs() * scale));
     ASSERT_TRUE(d.ok()) << scale << ": " << d.status().message();

@@ -15,7 +15,6 @@
 namespace sc::test {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const Vec3 kHalf(1.0, 0.05, 0.05);    // the bar
 const Vec3 kPivot(-1.0, -0.05, 0.0);  // its lower left edge, the centre of rotation
 

@@ -16,7 +16,6 @@
 namespace sc::test {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 Placement leverAt(double angle) {
   Placement p;

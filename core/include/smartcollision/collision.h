@@ -20,12 +20,27 @@ namespace detail {
 struct PairState;
 }
 
+/// What one direction's update found.
+enum class DirectionStatus {
+  NotComputed,            ///< code InvalidArgument (settings out of range), or no update yet
+  BeyondMaxDistance,      ///< code NoResult: apart by more than SceneSettings::max_distance
+  FirstSeenIntersecting,  ///< code InvalidInitialTransformation: no free pose known yet
+  Separated,              ///< apart by more than the tolerance (distance > tolerance)
+  Touching,               ///< apart or in contact within the tolerance; no depth (tpdv = 0)
+  Penetrating,            ///< a depth: the proxy settled at the contact configuration
+  Lagging,                ///< a depth, but the proxy ran out of iterations on its way:
+                          ///< the contact configuration is not settled (catches up later)
+};
+
 /// One direction of a pair: target T, opponent O. All vectors in world coordinates.
 /// Fields other than the ids are valid only when code == Ok.
 struct DirectedResult {
   /// Ok, NoResult, InvalidInitialTransformation, or InvalidArgument (PairTracker
   /// only: settings out of range, nothing computed).
   ErrorCode code = ErrorCode::NoResult;
+  /// What happened, in more detail than `code`: touching and penetrating are told
+  /// apart (both can have distance 0), and a lagging proxy from a settled one.
+  DirectionStatus status = DirectionStatus::NotComputed;
   int target_object = -1;    ///< Part::id of T's part in the reported contact
   int opponent_object = -1;  ///< Part::id of O's part
   int target_piece = -1;     ///< piece index within that part's model
@@ -44,7 +59,13 @@ struct DirectedResult {
   Vec3 contact_position = Vec3::Zero();  ///< T's world centre of rotation at contact
   Quat contact_orientation = Quat::Identity();  ///< T's orientation at contact
 
+  /// Distance <= 0 (a touching pair reads as penetrating here; `status` tells them
+  /// apart: hasDepth()).
   bool penetrating() const { return code == ErrorCode::Ok && distance <= 0.0; }
+  /// A translational or rotational depth is reported (Penetrating or Lagging).
+  bool hasDepth() const {
+    return status == DirectionStatus::Penetrating || status == DirectionStatus::Lagging;
+  }
 };
 
 /// One contact of a direction (extension, for multi-point consumers such as

@@ -21,6 +21,7 @@ using Quat = Eigen::Quaterniond;
 using Tri = Eigen::Vector3i;  ///< three vertex indices, counter-clockwise seen from outside
 
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+inline constexpr double kPi = 3.14159265358979323846;
 
 /// Rigid transform p -> rotation * p + translation. Named `<to>_from_<from>`.
 struct Rigid {

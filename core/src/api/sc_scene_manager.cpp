@@ -119,6 +119,19 @@ int put(const sc::Vec3& v, double* out) {
   return 3;
 }
 
+SCint directionStatus(sc::DirectionStatus s) {
+  switch (s) {
+    case sc::DirectionStatus::BeyondMaxDistance: return SC_DIRECTION_BEYOND_MAX_DISTANCE;
+    case sc::DirectionStatus::FirstSeenIntersecting: return SC_DIRECTION_FIRST_SEEN_INTERSECTING;
+    case sc::DirectionStatus::Separated: return SC_DIRECTION_SEPARATED;
+    case sc::DirectionStatus::Touching: return SC_DIRECTION_TOUCHING;
+    case sc::DirectionStatus::Penetrating: return SC_DIRECTION_PENETRATING;
+    case sc::DirectionStatus::Lagging: return SC_DIRECTION_LAGGING;
+    case sc::DirectionStatus::NotComputed: break;
+  }
+  return SC_DIRECTION_NOT_COMPUTED;
+}
+
 /// GetStatus for the integer-valued types.
 SCint intStatus(const sc::PairStatus& pair, int d, SCenum type, SCint* out) {
   const sc::DirectedResult& r = pair.results[d];
@@ -132,6 +145,9 @@ SCint intStatus(const sc::PairStatus& pair, int d, SCenum type, SCint* out) {
       return SC_NO_ERROR;
     case SC_CONTACT_POINT_COUNT:
       out[0] = static_cast<SCint>(pair.contacts[d].size());
+      return SC_NO_ERROR;
+    case SC_DIRECTION_STATUS:
+      out[0] = directionStatus(r.status);
       return SC_NO_ERROR;
     case SC_OBJECT_ID:
     case SC_PIECE_ID:

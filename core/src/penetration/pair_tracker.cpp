@@ -35,14 +35,28 @@ Feature featureAt(const Leaf& leaf, const Rigid& frame_from_group, const Vec3& p
                   const int* simplex, int count) {
   const Rigid frame_from_leaf = frame_from_group * leaf.group_from_leaf;
   const Vec3 local = frame_from_leaf.inverse() * point;
-  const double tol = 1e-9 * (leaf.poly->radius + leaf.poly->center.norm());  // as featureTolerance
-  return closestFeature(*leaf.poly, local, simplex, count, tol);
+  return closestFeature(*leaf.poly, local, simplex, count, featureTolerance(*leaf.poly));
+}
+
+DirectionStatus statusOf(const ProxyOutcome& o, double tolerance) {
+  switch (o.code) {
+    case ErrorCode::Ok:
+      if (o.penetrating) return o.lagging ? DirectionStatus::Lagging : DirectionStatus::Penetrating;
+      return o.distance > tolerance ? DirectionStatus::Separated : DirectionStatus::Touching;
+    case ErrorCode::NoResult:
+      return DirectionStatus::BeyondMaxDistance;
+    case ErrorCode::InvalidInitialTransformation:
+      return DirectionStatus::FirstSeenIntersecting;
+    default:
+      return DirectionStatus::NotComputed;
+  }
 }
 
 void toWorld(const ProxyOutcome& o, const GroupView& target, const GroupView& opponent,
-             const GroupPairQuery& query, DirectedResult& r) {
+             const GroupPairQuery& query, double tolerance, DirectedResult& r) {
   r = DirectedResult();
   r.code = o.code;
+  r.status = statusOf(o, tolerance);
   if (o.code != ErrorCode::Ok) return;
   const Rigid world_from_o = opponent.placement.worldFromLocal();
   const Leaf lt = query.targetLeaf(o.contact.t_leaf);
@@ -98,7 +112,7 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
     tracker.update(query, free_pose, center, settings, outcome);
     tracker.update(query, goal, center, settings, outcome);
   }
-  toWorld(outcome, target, opponent, query, out);
+  toWorld(outcome, target, opponent, query, settings.tolerance, out);
   // Debug builds: a result breaking its contract aborts here, at its source.
   enforceResultInvariants(out, target.placement, opponent.placement);
   state.last[dir] = outcome;

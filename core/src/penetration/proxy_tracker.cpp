@@ -142,6 +142,7 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   const Mat3 rotation = freeze ? previous_proxy_.rotation : goal.rotation;
   bool feasible = true;
   out.iterations = slide(query, rotation, goal_center, center, settings, &feasible);
+  ran_out_ = out.iterations >= settings.max_iterations;
   // An infeasible slide left the proxy intersecting: even at the goal it has not
   // reached a free pose. The slide writes its pose as a centre and a rotation, which
   // rounds: within that rounding the proxy is at the goal (else NONE would freeze its
@@ -153,7 +154,9 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   if (!reached && mode == RotationMode::None && !penetrating_) {
     // Penetration began in this update: None keeps the orientation at the impact.
     proxy_ = impactPose(query, goal, center, settings);
-    out.iterations += slide(query, proxy_.rotation, goal_center, center, settings, &feasible);
+    const int used = slide(query, proxy_.rotation, goal_center, center, settings, &feasible);
+    ran_out_ = used >= settings.max_iterations;
+    out.iterations += used;
   } else if (!feasible && mode == RotationMode::Input) {
     // No translation resolves (manual Fig. 5-11): Input turns too, rotation weighted
     // far above translation, from the last free proxy.
@@ -185,6 +188,7 @@ bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& ce
                         const SceneSettings& settings, ProxyOutcome& out) {
   out.iterations =
       twistSlide(query, proxy_, goal, center, previous_proxy_, settings, skinOf(settings), twist_);
+  ran_out_ = out.iterations >= settings.max_iterations;
   return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
 }
 
@@ -215,6 +219,7 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, c
   out.tpdv = tpdv;
   out.rpdv = rpdv;
   out.distance = -tpdv.norm();
+  out.lagging = ran_out_ || main < 0;
   if (main >= 0) {
     out.contact = contacts_[main];
     out.contact.normal = normal;

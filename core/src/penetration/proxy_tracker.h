@@ -23,6 +23,7 @@ struct ProxyOutcome {
   Vec3 tpdv = Vec3::Zero();  ///< goal centre minus contact centre
   Vec3 rpdv = Vec3::Zero();  ///< rotation vector of R_goal R_contact^T
   int iterations = 0;
+  bool lagging = false;  ///< penetrating, but the iterations ran out before the proxy settled
 };
 
 /// Outline of one update (design.md section 4):
@@ -85,6 +86,7 @@ class ProxyTracker {
 
   bool tracking_ = false;
   bool penetrating_ = false;
+  bool ran_out_ = false;  ///< the last slide or turn used all its iterations
   Rigid proxy_;           ///< o_from_t of the proxy
   Rigid previous_proxy_;  ///< proxy at the start of this update (free)
   std::vector<LeafContact> contacts_;

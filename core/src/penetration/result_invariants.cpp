@@ -16,7 +16,6 @@
 namespace sc::detail {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 Status broken(const std::string& what) {
   return {ErrorCode::InvalidArgument, "result invariant broken: " + what};

@@ -434,7 +434,7 @@ bool Builder::windsOnce() const {
   };
   for (const Tri& f : tris_) add(f);
   for (const Tri& f : virtual_) add(f);
-  constexpr double kFourPi = 4.0 * 3.14159265358979323846;
+  constexpr double kFourPi = 4.0 * kPi;
   return std::abs(solid_angle / kFourPi - 1.0) < 0.5;
 }
 

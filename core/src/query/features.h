@@ -8,6 +8,12 @@
 
 namespace sc::detail {
 
+/// Feature tolerance of a polytope, as results report features: relative to its size
+/// and position, with no absolute floor, so it holds at every scale.
+inline double featureTolerance(const ConvexPolytope& poly) {
+  return 1e-9 * (poly.radius + poly.center.norm());
+}
+
 /// The smallest feature of `poly` containing `point` (polytope-local frame), seeded
 /// by the simplex vertices `ids[0..count)` GJK ended with. Vertex if within
 /// `tolerance` of a vertex, else an edge of a face containing the point, else a face.

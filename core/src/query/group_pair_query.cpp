@@ -21,6 +21,7 @@
 
 #include "geometry/math_util.h"
 #include "geometry/triangle_distance.h"
+#include "query/features.h"
 
 namespace sc::detail {
 
@@ -29,12 +30,6 @@ namespace {
 constexpr int kMaxAdvanceSteps = 64;
 /// The remembered distance is trusted to this relative accuracy (GJK's is ~1e-12).
 constexpr double kKnownGapMargin = 1e-9;
-
-/// Feature tolerance of a polytope, as the pair tracker reports features: relative
-/// to its size and position, with no absolute floor, so it holds at every scale.
-double featureTolerance(const ConvexPolytope& poly) {
-  return 1e-9 * (poly.radius + poly.center.norm());
-}
 
 bool realFaceHolds(const ConvexPolytope& poly, int f, const Vec3& local, double tolerance) {
   if (f >= static_cast<int>(poly.face_source.size()) || poly.face_source[f] < 0) return false;

@@ -119,7 +119,7 @@ void DynamicAabbTree::clear() {
   leaf_count_ = 0;
 }
 
-const std::vector<LeafPair>& DynamicAabbTree::pairs(double margin) {
+const std::vector<HandlePair>& DynamicAabbTree::pairs(double margin) {
   if (!pairs_valid_ || margin != pair_margin_) {
     // Everything is new: query every live leaf.
     pairs_.clear();
@@ -131,14 +131,14 @@ const std::vector<LeafPair>& DynamicAabbTree::pairs(double margin) {
   }
   // Pairs of untouched leaves still hold; those of touched leaves are found anew.
   pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
-                              [this](const LeafPair& p) { return dirty_[p.a] || dirty_[p.b]; }),
+                              [this](const HandlePair& p) { return dirty_[p.a] || dirty_[p.b]; }),
                pairs_.end());
   fresh_.clear();
   for (int leaf : dirty_list_) {
     if (nodes_[leaf].height != 0) continue;  // removed
     query(nodes_[leaf].fat, margin, [&](int other) {
       if (nodes_[other].user == nodes_[leaf].user) return;
-      fresh_.push_back(leaf < other ? LeafPair{leaf, other} : LeafPair{other, leaf});
+      fresh_.push_back(leaf < other ? HandlePair{leaf, other} : HandlePair{other, leaf});
     });
   }
   for (int leaf : dirty_list_) dirty_[leaf] = 0;

@@ -12,11 +12,11 @@
 namespace sc::detail {
 
 /// Two leaf handles, a < b.
-struct LeafPair {
+struct HandlePair {
   int a = 0;
   int b = 0;
-  bool operator<(const LeafPair& o) const { return a < o.a || (a == o.a && b < o.b); }
-  bool operator==(const LeafPair& o) const { return a == o.a && b == o.b; }
+  bool operator<(const HandlePair& o) const { return a < o.a || (a == o.a && b < o.b); }
+  bool operator==(const HandlePair& o) const { return a == o.a && b == o.b; }
 };
 
 /// Binary tree whose leaves hold a tight box, a fat box containing it, and a user
@@ -55,7 +55,7 @@ class DynamicAabbTree {
   /// one is grown by `margin`, sorted. Temporal coherence: only the leaves inserted
   /// or re-inserted since the last call are queried; the pairs of the others still
   /// hold, as their fat boxes have not changed. A new margin recomputes all.
-  const std::vector<LeafPair>& pairs(double margin);
+  const std::vector<HandlePair>& pairs(double margin);
 
   /// Checks parent links, heights, containment of boxes, the free list and the leaf
   /// count (for tests). Returns false at the first broken invariant.
@@ -90,9 +90,9 @@ class DynamicAabbTree {
   // Pair maintenance.
   std::vector<std::uint8_t> dirty_;  ///< by node: inserted, re-inserted or removed since pairs()
   std::vector<int> dirty_list_;
-  std::vector<LeafPair> pairs_;
-  std::vector<LeafPair> fresh_;
-  std::vector<LeafPair> merged_;
+  std::vector<HandlePair> pairs_;
+  std::vector<HandlePair> fresh_;
+  std::vector<HandlePair> merged_;
   double pair_margin_ = 0.0;
   bool pairs_valid_ = false;
   int root_ = kNull;

@@ -314,7 +314,7 @@ struct Scene::Impl {
   /// group a candidate; their pairs are all the pair (group, static).
   void treeCandidates() {
     const double max_distance = settings.max_distance;
-    for (const detail::LeafPair& p : tree.pairs(max_distance)) {
+    for (const detail::HandlePair& p : tree.pairs(max_distance)) {
       const GroupRec& a = *slots[tree.user(p.a)];
       const GroupRec& b = *slots[tree.user(p.b)];
       if (!a.seeker && !b.seeker) continue;

@@ -106,7 +106,7 @@ MeshData starPrism(int points, double inner, double outer, double height) {
   const int n = 2 * points;
   for (int level = 0; level < 2; ++level) {
     for (int i = 0; i < n; ++i) {
-      const double angle = 3.14159265358979323846 * i / points;
+      const double angle = kPi * i / points;
       const double r = i % 2 == 0 ? outer : inner;
       m.vertices.emplace_back(r * std::cos(angle), r * std::sin(angle), level * height);
     }

@@ -67,9 +67,9 @@ void checkQuery(DynamicAabbTree& tree, const std::map<int, Aabb>& live, const Aa
 }
 
 /// The pairs of live leaves with different users whose fat boxes are within `margin`.
-std::vector<LeafPair> bruteForcePairs(const DynamicAabbTree& tree, const std::map<int, Aabb>& live,
+std::vector<HandlePair> bruteForcePairs(const DynamicAabbTree& tree, const std::map<int, Aabb>& live,
                                       double margin) {
-  std::vector<LeafPair> out;
+  std::vector<HandlePair> out;
   for (auto a = live.begin(); a != live.end(); ++a) {
     for (auto b = std::next(a); b != live.end(); ++b) {
       if (tree.user(a->first) == tree.user(b->first)) continue;
@@ -134,7 +134,7 @@ TEST(DynamicAabbTree, RandomInsertMoveRemoveMatchesBruteForce) {
     if (step % 7 == 0) {
       const double margin = step % 700 == 0 ? margins[(step / 700) % 4] : pair_margin;
       if (step % 700 == 0) pair_margin = margin;
-      const std::vector<LeafPair>& got = tree.pairs(margin);
+      const std::vector<HandlePair>& got = tree.pairs(margin);
       ASSERT_EQ(got, bruteForcePairs(tree, live, margin)) << "after step " << step;
       pair_count += static_cast<long>(got.size());
     }

@@ -111,8 +111,11 @@ inline void checkDirection(SCSceneManager& scene, SCint index, bool reverse) {
   SCint status = -1;
   if (scene.GetStatus(SC_DIRECTION_STATUS, &status, index, reverse) != SC_NO_ERROR)
     fail("GetStatus(SC_DIRECTION_STATUS) failed");
+  // No result: beyond the maximum distance, or a direction not computed (its target
+  // group static or passive), which the status tells apart.
   const bool status_fits =
-      code == SC_ERROR_NO_RESULT ? status == SC_DIRECTION_BEYOND_MAX_DISTANCE
+      code == SC_ERROR_NO_RESULT
+          ? status == SC_DIRECTION_BEYOND_MAX_DISTANCE || status == SC_DIRECTION_NOT_COMPUTED
       : code == SC_ERROR_INVALID_INITIAL_TRANSFORMATION
           ? status == SC_DIRECTION_FIRST_SEEN_INTERSECTING
           : status >= SC_DIRECTION_SEPARATED && status <= SC_DIRECTION_LAGGING;

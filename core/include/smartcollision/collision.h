@@ -22,7 +22,8 @@ struct PairState;
 
 /// What one direction's update found.
 enum class DirectionStatus {
-  NotComputed,            ///< code InvalidArgument (settings out of range), or no update yet
+  NotComputed,            ///< code InvalidArgument (settings out of range), or NoResult for
+                          ///< a direction not updated (a scene's static or passive target)
   BeyondMaxDistance,      ///< code NoResult: apart by more than SceneSettings::max_distance
   FirstSeenIntersecting,  ///< code InvalidInitialTransformation: no free pose known yet
   Separated,              ///< apart by more than the tolerance (distance > tolerance)

@@ -11,8 +11,8 @@
 #include "contact_clusters.h"
 #include "contact_response.h"
 #include "smartcollision/bullet/plugin.h"
-#include "step_buffer.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
+#include "step_buffer.h"
 
 namespace sc::bullet {
 
@@ -411,8 +411,9 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
   d.in_contact[dir] = r.penetrating();
   if (!(r.distance < threshold)) return false;
   // The rows pass measures rows after the projections: none is projected again.
-  shift = fresh && !d.plugin.stepBuffer().rowsPass() ? detail::impactProjection(r, t.body, o.body, dt, tolerance)
-                                        : Vec3::Zero();
+  shift = fresh && !d.plugin.stepBuffer().rowsPass()
+              ? detail::impactProjection(r, t.body, o.body, dt, tolerance)
+              : Vec3::Zero();
   if (!shift.isZero()) {
     ++stats.projected;
     detail::deliver(d.plugin, t.body, o.body, detail::impactImpulse(shift, t.body, o.body), shift);
@@ -535,7 +536,8 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   // The pair keeps its order for its life; side i is objects_[i] in any case, so
   // the tracker's directions stay attached to the same bodies.
   if (!models_[0] || !models_[1]) return;
-  if (plugin_->stepBuffer().rowsPass() && !plugin_->stepBuffer().projected(objects_[0]) && !plugin_->stepBuffer().projected(objects_[1]))
+  if (plugin_->stepBuffer().rowsPass() && !plugin_->stepBuffer().projected(objects_[0]) &&
+      !plugin_->stepBuffer().projected(objects_[1]))
     return;
   const bool swapped = body0->getCollisionObject() != objects_[0];
   const btCollisionObjectWrapper* wraps[2] = {swapped ? body1 : body0, swapped ? body0 : body1};
@@ -549,7 +551,9 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
       objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
   // After the integration only a fresh impact needs a query (a pair in contact is
   // its rows' to hold until the next step's detection).
-  if (!closest_points_ && plugin_->stepBuffer().impactPass() && ever_queried_ && !(queried_gap_ >= 0.0)) return;
+  if (!closest_points_ && plugin_->stepBuffer().impactPass() && ever_queried_ &&
+      !(queried_gap_ >= 0.0))
+    return;
   if (!closest_points_ && stillApart(wraps, threshold)) {
     ++stats.pairs;
     ++stats.skipped;

@@ -46,7 +46,7 @@ struct Moments {
 /// edge of a uniform patch) each way along both tangent axes, clamped to the patch's
 /// extent. Each row's separation is the least-squares plane of the candidates'
 /// separations at the row, never deeper than the deepest.
-void growCluster(const std::vector<RowCandidate>& candidates, int seed, int label,
+void growCluster(const std::vector<RowCandidate>& candidates, int seed, int label, double radius,
                  std::vector<int>& labels, ContactCluster& c) {
   const RowCandidate& s = candidates[static_cast<std::size_t>(seed)];
   c.normal = s.normal;
@@ -56,7 +56,10 @@ void growCluster(const std::vector<RowCandidate>& candidates, int seed, int labe
   Vec3 normal_sum = Vec3::Zero();
   bool all_exact = true;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (labels[i] >= 0 || candidates[i].normal.dot(s.normal) < kClusterCos) continue;
+    // Corners of a convex piece form one support polygon however wide.
+    const bool far = !(s.corner && candidates[i].corner) &&
+                     (candidates[i].on_b - s.on_b).squaredNorm() > radius * radius;
+    if (labels[i] >= 0 || candidates[i].normal.dot(s.normal) < kClusterCos || far) continue;
     labels[i] = label;
     const Vec3& p = candidates[i].on_b;
     m.add(u.dot(p), v.dot(p), s.normal.dot(p), candidates[i].separation);
@@ -99,15 +102,16 @@ void growCluster(const std::vector<RowCandidate>& candidates, int seed, int labe
 
 }  // namespace
 
-int buildClusters(const std::vector<RowCandidate>& candidates, std::vector<int>& labels,
-                  std::vector<ContactCluster>& clusters) {
+int buildClusters(const std::vector<RowCandidate>& candidates, double radius,
+                  std::vector<int>& labels, std::vector<ContactCluster>& clusters) {
   clusters.clear();
   labels.assign(candidates.size(), -1);
   while (static_cast<int>(clusters.size()) < kMaxClusters) {
     const int seed = deepestFree(candidates, labels);
     if (seed < 0) return 0;
     clusters.emplace_back();
-    growCluster(candidates, seed, static_cast<int>(clusters.size()) - 1, labels, clusters.back());
+    growCluster(candidates, seed, static_cast<int>(clusters.size()) - 1, radius, labels,
+                clusters.back());
   }
   return static_cast<int>(std::count(labels.begin(), labels.end(), -1));
 }

@@ -19,6 +19,7 @@ struct RowCandidate {
   Vec3 normal = Vec3::UnitY();
   double separation = 0.0;
   bool exact = false;  ///< a corner of a convex piece (a stable vertex), not a leaf contact
+  bool corner = false;  ///< a corner of a convex piece, exact or on a face's plane
 };
 
 /// Patches per pair, rows per patch: a patch of corners keeps them (up to
@@ -37,11 +38,14 @@ struct ContactCluster {
 };
 
 /// Groups `candidates` into at most kMaxClusters patches: the deepest candidate seeds
-/// the first and takes every candidate whose normal is within kClusterCos of its own,
+/// the first and takes every candidate whose normal is within kClusterCos of its own
+/// and whose point lies within `radius` of its point (two regions of one overlap with
+/// close normals are two patches: rows spread over both would stand between them;
+/// the corners of a convex piece, its support polygon, stay one patch),
 /// the deepest of the rest seeds the next, and so on. Candidates left when all patches
 /// are taken are dropped; returns how many. `labels` is scratch (one per candidate);
 /// allocation-free once the vectors have their capacity.
-int buildClusters(const std::vector<RowCandidate>& candidates, std::vector<int>& labels,
-                  std::vector<ContactCluster>& clusters);
+int buildClusters(const std::vector<RowCandidate>& candidates, double radius,
+                  std::vector<int>& labels, std::vector<ContactCluster>& clusters);
 
 }  // namespace sc::bullet::detail

@@ -72,10 +72,11 @@ PairSpring pairSpring(const BodySide& a, const BodySide& b, const ContactSetting
 }
 
 Vec3 impactProjection(const DirectedResult& r, const BodySide& t, const BodySide& o, double dt,
-                      double tolerance) {
+                      double tolerance, double held_depth) {
   if (t.body == nullptr || !r.penetrating() || !(dt > 0.0)) return Vec3::Zero();
   const double depth = r.tpdv.norm();
-  if (!(depth > tolerance)) return Vec3::Zero();
+  const double excess = depth - std::max(0.0, held_depth);
+  if (!(excess > tolerance)) return Vec3::Zero();
   const Vec3 u = -r.tpdv / depth;  // out of the opponent
   const btVector3 p = toBt(r.point_on_opponent);
   const double closing_t = -double(t.velocityAt(p).dot(toBt(u)));  // t towards o
@@ -86,7 +87,27 @@ Vec3 impactProjection(const DirectedResult& r, const BodySide& t, const BodySide
   // Each body undoes its own part of the approach: a body landing on a resting one is
   // put back whole, and the resting one is not pushed into its own supports.
   const double share = o.inv_mass > 0.0 ? std::clamp(closing_t / approach, 0.0, 1.0) : 1.0;
-  return -share * r.tpdv;
+  return -share * (excess / depth) * r.tpdv;
+}
+
+double cascadeShare(const BodySide& t, const BodySide& o, const StepBuffer& step) {
+  if (t.body == nullptr) return 0.0;
+  const bool moved_t = step.projected(t.object), moved_o = step.projected(o.object);
+  if (o.body == nullptr) return moved_t ? 1.0 : 0.0;
+  if (!moved_o) return 0.0;
+  return moved_t ? 0.5 : 1.0;
+}
+
+Vec3 projection(const DirectedResult& r, const BodySide& t, const BodySide& o, bool was_in_contact,
+                double held_depth, const StepBuffer& step, double dt, double tolerance) {
+  if (step.cascade()) {
+    const double depth = r.tpdv.norm(), excess = depth - held_depth;
+    if (!r.penetrating() || !(excess > tolerance)) return Vec3::Zero();
+    return -cascadeShare(t, o, step) * (excess / depth) * r.tpdv;
+  }
+  if (step.rowsPass()) return Vec3::Zero();  // rows after the projections, none again
+  if (step.impactPass()) return impactProjection(r, t, o, dt, tolerance, held_depth);
+  return was_in_contact ? Vec3::Zero() : impactProjection(r, t, o, dt, tolerance);
 }
 
 btVector3 impactImpulse(const Vec3& shift, const BodySide& t, const BodySide& o) {

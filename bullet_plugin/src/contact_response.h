@@ -19,6 +19,8 @@ class Plugin;
 
 namespace sc::bullet::detail {
 
+class StepBuffer;
+
 /// A side of a pair as the response sees it. `body` is null for a static or
 /// kinematic object (infinite mass: it gets no impulse).
 struct BodySide {
@@ -41,7 +43,8 @@ struct RowPoint {
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();
   double separation = 0.0;
-  bool exact = false;  ///< a corner of a convex piece, measured on a convex opponent
+  bool exact = false;   ///< a corner of a convex piece, measured on a convex opponent
+  bool corner = false;  ///< a corner of a convex piece (exact or on a face's plane)
 };
 
 /// A plane in world coordinates: outward unit normal and offset.
@@ -77,12 +80,27 @@ struct PairSpring {
 PairSpring pairSpring(const BodySide& a, const BodySide& b, const ContactSettings& c, double dt);
 
 /// Projection of an impact: when the target approached the opponent by more than
-/// `tolerance` in this step and the result is penetrating, the target's share of
-/// -TPDV brings it back to the entry side at once; zero otherwise. The share is the
-/// target's part of the approach speed at the contact (all of it against a static
-/// opponent); its approach speed is impactImpulse's and the rows'.
+/// `tolerance` in this step and the result is deeper than `held_depth` (the depth the
+/// rows already held, 0 for a fresh impact) by more than `tolerance`, the target's
+/// share of that excess along -TPDV brings it back at once; zero otherwise. The share
+/// is the target's part of the approach speed at the contact (all of it against a
+/// static opponent); its approach speed is impactImpulse's and the rows'.
 Vec3 impactProjection(const DirectedResult& r, const BodySide& t, const BodySide& o, double dt,
-                      double tolerance);
+                      double tolerance, double held_depth = 0.0);
+
+/// The projection of target `t` for result `r`, one rule for every algorithm: at the
+/// step's detection a fresh impact's (impactProjection; a pair that was in contact is
+/// its rows' to hold); after the integration the depth beyond `held_depth` (the
+/// detection's: a second region of a pair in contact struck where no row stood); in a
+/// cascade the excess over `held_depth` of a pair with a projected side, taken by the
+/// side that may move (cascadeShare); in any other rows pass none.
+Vec3 projection(const DirectedResult& r, const BodySide& t, const BodySide& o, bool was_in_contact,
+                double held_depth, const StepBuffer& step, double dt, double tolerance);
+
+/// The target's share of a cascade's excess: a body a projected one was put back into
+/// moves out of it whole, a projected body out of a static one whole, two projected
+/// bodies half each; a projected body does not move for one that was not.
+double cascadeShare(const BodySide& t, const BodySide& o, const StepBuffer& step);
 
 /// The plastic impulse on the target of a projected impact (`shift` from
 /// impactProjection): cancels its share of the centres of mass' approach along the

@@ -222,19 +222,24 @@ Plugin::~Plugin() = default;
 
 Status Plugin::setSettings(const PluginSettings& settings) {
   Status s = validate(settings);
-  if (s.ok()) settings_ = settings, ++settings_version_;
+  if (s.ok()) settings_ = settings, step_->settingsChanged();
   return s;
+}
+
+void Plugin::setContactModel(ContactModel model) {
+  settings_.model = model;
+  step_->settingsChanged();
 }
 
 Status Plugin::setBodySettings(const btCollisionObject* body, const ContactSettings& settings) {
   if (body == nullptr) return Status(ErrorCode::InvalidArgument, "null body");
   Status s = validate(settings);
-  if (s.ok()) body_settings_[body] = settings, ++settings_version_;
+  if (s.ok()) body_settings_[body] = settings, step_->settingsChanged();
   return s;
 }
 
 void Plugin::clearBodySettings(const btCollisionObject* body) {
-  if (body_settings_.erase(body) > 0) ++settings_version_;
+  if (body_settings_.erase(body) > 0) step_->settingsChanged();
 }
 
 void accumulate(StepStats& into, const StepStats& pair) {

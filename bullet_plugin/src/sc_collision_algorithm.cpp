@@ -10,6 +10,7 @@
 
 #include "contact_clusters.h"
 #include "contact_response.h"
+#include "motion_bound.h"
 #include "smartcollision/bullet/plugin.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
 #include "step_buffer.h"
@@ -242,7 +243,8 @@ void addSupportCorners(const DirectedResult& r, const Side& t, const Side& o, co
     if (r.opponent_feature.type != FeatureType::Face) return;
     const WorldPlane face{r.normal, r.normal.dot(r.point_on_opponent)};
     for (const Vec3& p : corners)
-      if (face.distance(p) < threshold) points.push_back({p, face.normal, face.distance(p)});
+      if (face.distance(p) < threshold)
+        points.push_back({p, face.normal, face.distance(p), false, true});
     return;
   }
   facePlanes(*op, o.view.placement.worldFromLocal(), planes);
@@ -250,7 +252,7 @@ void addSupportCorners(const DirectedResult& r, const Side& t, const Side& o, co
   for (const Vec3& p : corners) {
     const double sep = face.distance(p);
     if (sep < threshold && convexSeparation(planes, p) < threshold)
-      points.push_back({p, face.normal, sep, true});
+      points.push_back({p, face.normal, sep, true, true});
   }
 }
 
@@ -325,6 +327,7 @@ struct DirectionState {
   const DirectedResult* rows_out;
   bool* spring_on;
   bool* in_contact;  ///< per direction: penetrating in the last step
+  double* held_depth;  ///< per direction: its depth at the step's detection (0: apart)
   std::vector<detail::RowPoint>& points;
   std::vector<ContactPoint>& contacts;
   std::vector<Vec3>& corners;
@@ -340,8 +343,11 @@ void gatherPoints(int dir, const Side& t, const Side& o, const Vec3& shift, doub
   addSupportCorners(r, t, o, shift, threshold, d.corners, d.planes, d.points);
   const std::size_t exact = d.points.size();  // corner rows measured on a convex piece
   if (!wholeConvex(t)) {
-    // Non-convex: the core's contacts within the threshold, each a leaf pair.
-    d.rows_tracker.contactPoints(dir, threshold, d.contacts);
+    // Non-convex: the core's contacts within the threshold at the current pose, each
+    // a leaf pair. They are selected at the contact pose, up to the depth away: a
+    // second region of the overlap lies farther there than here.
+    const double depth = r.penetrating() ? r.tpdv.norm() : 0.0;
+    d.rows_tracker.contactPoints(dir, threshold + depth, d.contacts);
     // Rounded sides: the core measured their cores (inflate() for the result).
     const double rr = t.radius + o.radius;
     for (const ContactPoint& c : d.contacts)
@@ -405,15 +411,20 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
       return false;
     }
   }
-  // Only a fresh impact is projected: a pair already in contact is the rows' to hold
-  // (a soft row lets a pressed body approach; that is its spring, not an impact).
-  const bool fresh = !d.in_contact[dir];
+  // Only an impact is projected (detail::projection): a soft row lets a pressed body
+  // approach, which is its spring, not an impact. Projections move without turning:
+  // they follow the rows' (Input-mode) result, where a Mix or Free result's
+  // translation is only its share of the way out.
+  const detail::StepBuffer& step = d.plugin.stepBuffer();
+  const DirectedResult& rows = d.rows_out[dir];
+  const bool was_in_contact = d.in_contact[dir];
   d.in_contact[dir] = r.penetrating();
+  if (!step.impactPass())
+    d.held_depth[dir] = rows.code == ErrorCode::Ok && rows.penetrating() ? rows.tpdv.norm() : 0.0;
   if (!(r.distance < threshold)) return false;
-  // The rows pass measures rows after the projections: none is projected again.
-  shift = fresh && !d.plugin.stepBuffer().rowsPass()
-              ? detail::impactProjection(r, t.body, o.body, dt, tolerance)
-              : Vec3::Zero();
+  shift = rows.code == ErrorCode::Ok ? detail::projection(rows, t.body, o.body, was_in_contact,
+                                                          d.held_depth[dir], step, dt, tolerance)
+                                     : Vec3::Zero();
   if (!shift.isZero()) {
     ++stats.projected;
     detail::deliver(d.plugin, t.body, o.body, detail::impactImpulse(shift, t.body, o.body), shift);
@@ -445,19 +456,8 @@ ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructio
 
 double ScCollisionAlgorithm::motionSinceQuery(
     const btCollisionObjectWrapper* const wraps[2]) const {
-  double bound = 0.0;
-  for (int i = 0; i < 2; ++i) {
-    const btTransform& now = wraps[i]->getWorldTransform();
-    bound += double((now.getOrigin() - queried_[i].getOrigin()).length());
-    // A point at distance r from the origin moves by the chord 2 r sin(angle / 2),
-    // which is at most 2 r |q - q'| (the nearer sign of q'). Unlike the angle from
-    // the dot product, the difference has no rounding floor: a float dot product one
-    // ulp below 1 reads as 3.5e-4 rad.
-    const btQuaternion q = now.getRotation(), p = queried_[i].getRotation();
-    const double minus = double((q - p).length()), plus = double((q + p).length());
-    bound += 2.0 * reach_[i] * std::min(minus, plus);
-  }
-  return bound;
+  return detail::motionBound(wraps[0]->getWorldTransform(), queried_[0], reach_[0]) +
+         detail::motionBound(wraps[1]->getWorldTransform(), queried_[1], reach_[1]);
 }
 
 bool ScCollisionAlgorithm::stillApart(const btCollisionObjectWrapper* const wraps[2],
@@ -472,7 +472,7 @@ bool ScCollisionAlgorithm::rowsStillHold(const btCollisionObjectWrapper* const w
   // A hundredth of the tolerance: far below what the rows resolve, far above the
   // creep of a body at rest (nm per step), so a resting pair is queried again only
   // when something moves it.
-  return rows_kept_ && kept_version_ == plugin_->settingsVersion() &&
+  return rows_kept_ && kept_version_ == plugin_->stepBuffer().settingsVersion() &&
          motionSinceQuery(wraps) < 0.01 * plugin_->settings().query.tolerance;
 }
 
@@ -502,17 +502,41 @@ void ScCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
     if (m != nullptr) manifolds.push_back(m);
 }
 
-btPersistentManifold* ScCollisionAlgorithm::manifoldFor(const Vec3& normal,
+namespace {
+
+/// True when manifold `m` holds rows of patch `c`'s normal.
+bool sameNormal(const btPersistentManifold* m, const detail::ContactCluster& c) {
+  return m != nullptr && m->getNumContacts() > 0 &&
+         toVec(m->getContactPoint(0).m_normalWorldOnB).dot(c.normal) >= detail::kClusterCos;
+}
+
+/// Distance from manifold `m`'s points to patch `c`'s nearest row, when `m` holds
+/// rows of its normal; else infinity.
+double patchDistance(const btPersistentManifold* m, const detail::ContactCluster& c) {
+  if (!sameNormal(m, c)) return kInfinity;
+  double nearest = kInfinity;
+  for (int i = 0; i < m->getNumContacts(); ++i)
+    for (int k = 0; k < c.point_count; ++k)
+      nearest = std::min(nearest, (toVec(m->getContactPoint(i).getPositionWorldOnB()) -
+                                   c.points[static_cast<std::size_t>(k)].on_b)
+                                      .norm());
+  return nearest;
+}
+
+}  // namespace
+
+btPersistentManifold* ScCollisionAlgorithm::manifoldFor(const detail::ContactCluster& c,
                                                         bool taken[kManifolds]) {
   static_assert(kManifolds == detail::kMaxClusters);
+  // The manifold that held this patch: the nearest of its normal. Two regions of one
+  // normal keep a manifold each; a single contact that moves between the ends of a
+  // lying capsule keeps both ends' points as support, as Bullet's own manifolds do.
   int best = -1;
-  double best_cos = detail::kClusterCos;
-  for (int i = 0; i < kManifolds; ++i) {  // the manifold that held this patch
-    btPersistentManifold* m = manifolds_[i];
-    if (taken[i] || m == nullptr || m->getNumContacts() == 0) continue;
-    const double c = toVec(m->getContactPoint(0).m_normalWorldOnB).dot(normal);
-    if (c >= best_cos) {
-      best_cos = c;
+  double best_distance = kInfinity;
+  for (int i = 0; i < kManifolds; ++i) {
+    const double d = taken[i] ? kInfinity : patchDistance(manifolds_[i], c);
+    if (d < best_distance) {
+      best_distance = d;
       best = i;
     }
   }
@@ -523,9 +547,7 @@ btPersistentManifold* ScCollisionAlgorithm::manifoldFor(const Vec3& normal,
   taken[best] = true;
   btPersistentManifold*& m = manifolds_[best];
   if (m == nullptr) m = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
-  if (m->getNumContacts() > 0 &&
-      toVec(m->getContactPoint(0).m_normalWorldOnB).dot(normal) < detail::kClusterCos)
-    m->clearManifold();
+  if (m->getNumContacts() > 0 && !sameNormal(m, c)) m->clearManifold();
   return m;
 }
 
@@ -549,10 +571,10 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   const double threshold = double(std::min(
       objects_[0]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
       objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
-  // After the integration only a fresh impact needs a query (a pair in contact is
-  // its rows' to hold until the next step's detection).
-  if (!closest_points_ && plugin_->stepBuffer().impactPass() && ever_queried_ &&
-      !(queried_gap_ >= 0.0))
+  // After the integration only an impact needs a query: a pair in contact that moved
+  // less than the threshold is its rows' to hold until the next step's detection.
+  if (!closest_points_ && plugin_->stepBuffer().impactPass() && !plugin_->stepBuffer().rowsPass() &&
+      ever_queried_ && !(queried_gap_ >= 0.0) && !(motionSinceQuery(wraps) > threshold))
     return;
   if (!closest_points_ && stillApart(wraps, threshold)) {
     ++stats.pairs;
@@ -584,7 +606,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   rememberQuery(wraps, out, dirs);
 
   rows_kept_ = false;
-  kept_version_ = plugin_->settingsVersion();
+  kept_version_ = plugin_->stepBuffer().settingsVersion();
   if (closest_points_) {
     result->setPersistentManifold(manifold_);
     reportClosestPoints(out, sides, swapped, result);
@@ -609,10 +631,10 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
       inflate(input_out[dir], sides[dir].radius, sides[1 - dir].radius, input.tolerance);
     rows_out = input_out;
   }
-  DirectionState state{*plugin_, tracker_,   rows_out == out ? tracker_ : rows_tracker_,
-                       rows_out, spring_on_, in_contact_,
-                       points_,  contacts_,  corners_,
-                       planes_,  dt};
+  DirectionState state{*plugin_,    tracker_,   rows_out == out ? tracker_ : rows_tracker_,
+                       rows_out,    spring_on_, in_contact_,
+                       held_depth_, points_,    contacts_,
+                       corners_,    planes_,    dt};
   candidates_.clear();
   // Both directions' projections first: each moves its own target, so a direction's
   // rows see its target moved by its shift and its opponent by the other's.
@@ -631,13 +653,16 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
       if (!(p.separation < row_threshold)) continue;
       // Bullet's frame: the normal from the result's body 1 to its body 0, the point
       // on body 1.
-      candidates_.push_back(target_is_0
-                                ? detail::RowCandidate{p.point - p.separation * p.normal, p.normal,
-                                                       p.separation, p.exact}
-                                : detail::RowCandidate{p.point, -p.normal, p.separation, p.exact});
+      candidates_.push_back(
+          target_is_0 ? detail::RowCandidate{p.point - p.separation * p.normal, p.normal,
+                                             p.separation, p.exact, p.corner}
+                      : detail::RowCandidate{p.point, -p.normal, p.separation, p.exact, p.corner});
     }
   }
-  stats.dropped_rows += detail::buildClusters(candidates_, labels_, clusters_);
+  // A patch spans half the smaller body: two regions of one overlap (a torus across
+  // another touches it twice, often with close normals) keep rows of their own.
+  const double patch_radius = 0.5 * std::min(reach_[0], reach_[1]);
+  stats.dropped_rows += detail::buildClusters(candidates_, patch_radius, labels_, clusters_);
   // No kept point deeper than the pair's translational depth plus the tolerance.
   double stale_floor = -query.tolerance;
   for (int dir = 0; dir < 2; ++dir)
@@ -646,7 +671,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   bool taken[kManifolds] = {false, false, false, false};
   int rows = 0;
   for (const detail::ContactCluster& c : clusters_) {
-    btPersistentManifold* m = manifoldFor(c.normal, taken);
+    btPersistentManifold* m = manifoldFor(c, taken);
     result->setPersistentManifold(m);
     for (int k = 0; k < c.point_count; ++k) {
       const detail::RowCandidate& p = c.points[static_cast<std::size_t>(k)];
@@ -665,11 +690,26 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   // An impact's rows stay rigid for the step: they take the approach speed at once
   // (restitution 0), where a soft row would let a fast body on through.
   if (ps.model != ContactModel::Potential || stats.projected != projected_before) return;
-  // A set kT is each patch's: spread over that patch's rows.
+  // A set kT bears in one direction: spread over the rows of the patches that share
+  // the normal (one region or several).
   for (int i = 0; i < kManifolds; ++i)
     if (taken[i])
       detail::softenRows(manifolds_[i], spring, dt, contact.friction_scale,
-                         manifolds_[i]->getNumContacts());
+                         rowsAlong(manifolds_[i], taken));
+}
+
+int ScCollisionAlgorithm::rowsAlong(const btPersistentManifold* m,
+                                    const bool taken[kManifolds]) const {
+  if (m->getNumContacts() == 0) return 0;
+  const Vec3 normal = toVec(m->getContactPoint(0).m_normalWorldOnB);
+  int rows = 0;
+  for (int i = 0; i < kManifolds; ++i) {
+    const btPersistentManifold* other = manifolds_[i];
+    if (taken[i] && other->getNumContacts() > 0 &&
+        toVec(other->getContactPoint(0).m_normalWorldOnB).dot(normal) >= detail::kClusterCos)
+      rows += other->getNumContacts();
+  }
+  return rows;
 }
 
 }  // namespace sc::bullet

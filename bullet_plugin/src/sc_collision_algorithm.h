@@ -54,8 +54,10 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   /// apart or within detail::springReach. Before that a depth (a pair that starts
   /// deeply intersecting) gets the bounded recovery push.
   bool spring_on_[2] = {false, false};
-  /// Per direction: penetrating in the last step (only a fresh impact is projected).
+  /// Per direction: penetrating in the last step (an impact is projected: fresh, or
+  /// deeper after the integration than the rows held).
   bool in_contact_[2] = {false, false};
+  double held_depth_[2] = {0.0, 0.0};  ///< per direction: depth at the step's detection
   /// The last query's poses and its gap (the smallest distance of its directions, or
   /// -1 when not apart): while the bodies' motion since then is bounded by less than
   /// the gap minus the threshold, no query can find anything to respond to.
@@ -67,7 +69,7 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   /// put (a query that projected an impact or pushed a pair apart may not).
   StepStats queried_stats_;
   bool rows_kept_ = false;
-  int kept_version_ = -1;  ///< Plugin::settingsVersion() of that query
+  int kept_version_ = -1;  ///< StepBuffer::settingsVersion() of that query
   PairTracker tracker_;
   PairTracker rows_tracker_;                ///< Input-mode rows of non-convex pairs in Mix and Free
   std::vector<ContactPoint> contacts_;      ///< the core's contacts of a direction (reused)
@@ -78,9 +80,11 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   std::vector<int> labels_;                       ///< clustering scratch (reused)
   std::vector<detail::ContactCluster> clusters_;  ///< the step's patches (reused)
 
-  /// The manifold for a patch of normal `normal`: the one that held the same patch
-  /// last step, else an empty one; marks it taken.
-  btPersistentManifold* manifoldFor(const Vec3& normal, bool taken[kManifolds]);
+  /// The manifold for patch `c`: the one that held the same patch last step (its
+  /// normal, the nearest points), else an empty one; marks it taken.
+  btPersistentManifold* manifoldFor(const detail::ContactCluster& c, bool taken[kManifolds]);
+  /// Rows of the taken manifolds whose normal is within kClusterCos of `m`'s.
+  int rowsAlong(const btPersistentManifold* m, const bool taken[kManifolds]) const;
   /// How much the two bodies' surfaces can have moved relative to each other since
   /// the last query (origin displacements plus rotation chords at their reach).
   double motionSinceQuery(const btCollisionObjectWrapper* const wraps[2]) const;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "motion_bound.h"
 #include "smartcollision/bullet/plugin.h"
 #include "step_buffer.h"
 
@@ -50,12 +51,24 @@ void ScDynamicsWorld::measureRowsAgain() {
   // A projection moves a body after its other pairs measured their rows: points held
   // on it would then read the projection as depth (a body put back 3 cm along a
   // neighbour's normal read 6 mm into that neighbour). Those pairs measure again.
-  const StepStats first = plugin_->stepBuffer().stats();
-  plugin_->stepBuffer().setRowsPass(true);
-  m_dispatcher1->dispatchAllCollisionPairs(m_broadphasePairCache->getOverlappingPairCache(),
-                                           getDispatchInfo(), m_dispatcher1);
-  plugin_->stepBuffer().setRowsPass(false);
-  plugin_->stepBuffer().stats() = first;
+  // After the integration a body put back may land in the one that fell behind it:
+  // that one is moved out in turn (StepBuffer::cascade), a few links down the chain.
+  constexpr int kCascades = 4;
+  detail::StepBuffer& step = plugin_->stepBuffer();
+  const StepStats first = step.stats();
+  int projected = 0;
+  step.setRowsPass(true);
+  for (int pass = 0; pass < (step.impactPass() ? kCascades : 1); ++pass) {
+    step.stats() = StepStats{};
+    m_dispatcher1->dispatchAllCollisionPairs(m_broadphasePairCache->getOverlappingPairCache(),
+                                             getDispatchInfo(), m_dispatcher1);
+    projected += step.stats().projected;
+    step.apply();
+    if (!step.movedByLastApply()) break;
+  }
+  step.setRowsPass(false);
+  step.stats() = first;
+  step.stats().projected += projected;
 }
 
 void ScDynamicsWorld::integrateTransforms(btScalar timeStep) {
@@ -82,12 +95,8 @@ void ScDynamicsWorld::integrateTransforms(btScalar timeStep) {
 bool ScDynamicsWorld::movedFar() const {
   for (const auto& [object, pose] : last_poses_) {
     const btCollisionShape* shape = object->getCollisionShape();
-    const btTransform& now = object->getWorldTransform();
-    // Bound on any surface point's motion: the origin's, plus the chord a rotation
-    // sweeps at the shape's bounding radius.
-    const double c = std::min(1.0, std::abs(double(now.getRotation().dot(pose.getRotation()))));
-    const double moved = double((now.getOrigin() - pose.getOrigin()).length()) +
-                         2.0 * double(shape->getAngularMotionDisc()) * std::sqrt(1.0 - c * c);
+    const double moved = detail::motionBound(object->getWorldTransform(), pose,
+                                             double(shape->getAngularMotionDisc()));
     if (moved > double(shape->getContactBreakingThreshold(gContactBreakingThreshold))) return true;
   }
   return false;

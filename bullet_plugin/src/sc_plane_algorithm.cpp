@@ -150,10 +150,12 @@ void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
     return;
   }
   const double threshold = double(manifold_->getContactBreakingThreshold());
-  const bool fresh = !in_contact_;  // as ScCollisionAlgorithm: only a fresh impact
+  const bool was_in_contact = in_contact_;
   in_contact_ = r.penetrating();
-  const Vec3 shift = fresh ? detail::impactProjection(r, target, plane_side, dt, ps.query.tolerance)
-                           : Vec3::Zero();
+  const detail::StepBuffer& step = plugin_->stepBuffer();
+  if (!step.impactPass()) held_depth_ = r.penetrating() ? r.tpdv.norm() : 0.0;
+  const Vec3 shift = detail::projection(r, target, plane_side, was_in_contact, held_depth_, step,
+                                        dt, ps.query.tolerance);
   if (!shift.isZero()) {
     ++stats.projected;
     detail::deliver(*plugin_, target, plane_side, detail::impactImpulse(shift, target, plane_side),

@@ -42,7 +42,8 @@ class ScPlaneAlgorithm : public btActivatingCollisionAlgorithm {
   /// detail::springReach); before that a body deep in the plane is pushed out at a
   /// bounded speed.
   bool spring_on_ = false;
-  bool in_contact_ = false;  ///< penetrating in the last step (only a fresh impact is projected)
+  bool in_contact_ = false;               ///< penetrating in the last step (detail::projection)
+  double held_depth_ = 0.0;               ///< depth at the step's detection (0: apart)
   std::vector<detail::RowPoint> points_;  ///< row points of the step (reused)
 };
 

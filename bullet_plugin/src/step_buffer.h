@@ -38,12 +38,23 @@ class StepBuffer {
   void setImpactPass(bool on) { impact_pass_ = on; }
   bool impactPass() const { return impact_pass_; }
   /// The dispatch after projections: only pairs with a projected body measure their
-  /// rows again (at its new pose), and nothing is pushed or projected.
+  /// rows again (at its new pose). Nothing is pushed or projected, except in a cascade.
   void setRowsPass(bool on) { rows_pass_ = on; }
   bool rowsPass() const { return rows_pass_; }
-  /// Bodies moved by the last apply() (none after begin()).
+  /// A rows pass after the integration: a body that a projected one was put back into
+  /// is moved out of it in turn (a landing body put back onto the one that fell
+  /// behind it), and so on down the chain.
+  bool cascade() const { return impact_pass_ && rows_pass_; }
+  /// Bodies moved by projections since begin().
   bool anyProjected() const { return !projected_.empty(); }
   bool projected(const btCollisionObject* body) const;
+  /// True when the last apply() moved a body (false after begin()).
+  bool movedByLastApply() const { return moved_by_last_; }
+
+  /// Changes with every change of the plugin's settings or of a body's: a pair's kept
+  /// rows are only valid under the settings they were made with.
+  int settingsVersion() const { return settings_version_; }
+  void settingsChanged() { ++settings_version_; }
 
   StepStats& stats() { return stats_; }
   const StepStats& stats() const { return stats_; }
@@ -61,6 +72,8 @@ class StepBuffer {
   bool world_attached_ = false;
   bool impact_pass_ = false;
   bool rows_pass_ = false;
+  bool moved_by_last_ = false;
+  int settings_version_ = 0;
 };
 
 }  // namespace sc::bullet::detail

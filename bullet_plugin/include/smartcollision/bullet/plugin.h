@@ -31,13 +31,7 @@ class Plugin {
   /// InvalidArgument (settings kept) when validate(settings) fails.
   Status setSettings(const PluginSettings& settings);
   ContactModel contactModel() const { return settings_.model; }
-  void setContactModel(ContactModel model) {
-    settings_.model = model;
-    ++settings_version_;
-  }
-  /// Changes with every change of the settings or of a body's: a pair's kept rows
-  /// are only valid under the settings they were made with.
-  int settingsVersion() const { return settings_version_; }
+  void setContactModel(ContactModel model);
 
   /// Per-body override of the world's ContactSettings. A pair with two overridden
   /// bodies takes the larger stiffnesses and damping ratio and the shorter period.
@@ -77,7 +71,6 @@ class Plugin {
   std::unordered_map<const btCollisionObject*, ContactSettings> body_settings_;
   std::unordered_map<const btCollisionShape*, CachedModel> models_;
   std::unique_ptr<detail::StepBuffer> step_;
-  int settings_version_ = 0;
   std::unique_ptr<CreateFuncs> create_funcs_;
 };
 

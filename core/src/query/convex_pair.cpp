@@ -269,6 +269,11 @@ ConvexDepthStatus convexDepth(const ConvexPolytope& a, const Rigid& frame_from_a
                               const ConvexPolytope& b, const Rigid& frame_from_b,
                               ConvexPairCache& cache, EpaResult& result) {
   result = EpaResult();
+  // Non-finite frames or an empty polytope have no depth to find here.
+  if (a.vertices.empty() || b.vertices.empty() || !allFinite(frame_from_a.rotation) ||
+      !allFinite(frame_from_a.translation) || !allFinite(frame_from_b.rotation) ||
+      !allFinite(frame_from_b.translation))
+    return ConvexDepthStatus::Separated;
   const GjkResult g = runGjk(a, frame_from_a, b, frame_from_b, cache);
   if (g.status == GjkStatus::Separated) return ConvexDepthStatus::Separated;
   bool done = false;

@@ -44,7 +44,7 @@ struct ConvexPairCache {
 };
 
 enum class ConvexDepthStatus : std::uint8_t {
-  Separated,    ///< GJK found the polytopes apart: no depth
+  Separated,    ///< GJK found the polytopes apart (or a frame is not finite): no depth
   Penetrating,  ///< `result` holds the depth, exact to the relative tolerance
   Touching,     ///< depth 0 (the origin on the boundary of A - B); `result` holds it
 };

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "support/brute_force.h"
 #include "support/shapes.h"
@@ -134,6 +135,9 @@ TEST(ConvexPair, DegeneratePosesMatchTheExactDepth) {
     EXPECT_EQ(s, ConvexDepthStatus::Touching);
     EXPECT_NEAR(r.depth, 0.0, 1e-12);
   }
+  // A frame that is not finite: no depth, nothing read through it.
+  const Rigid broken = translation(Vec3(0.0, std::numeric_limits<double>::quiet_NaN(), 0.0));
+  EXPECT_EQ(convexDepth(unit, broken, slab, Rigid(), cache, r), ConvexDepthStatus::Separated);
   // Apart by a hair.
   EXPECT_EQ(convexDepth(unit, translation(Vec3(0, 1.5 + 1e-9, 0)), slab, Rigid(), cache, r),
             ConvexDepthStatus::Separated);

@@ -51,12 +51,14 @@ struct Cso {
 class Polytope {
  public:
   Polytope(EpaScratch& s, double tolerance) : s_(s), tolerance_(tolerance) {
-    if (s_.faces.capacity() == 0) {  // first use: room for a typical expansion at once
-      s_.vertices.reserve(128);
-      s_.faces.reserve(512);
-      s_.heap.reserve(512);
-      s_.stack.reserve(64);
-      s_.rim.reserve(64);
+    // First use: room for a typical expansion (256-vertex hulls: 13 iterations, some
+    // 80 faces) at once, some 13 KB; a longer one grows the arrays, and they stay.
+    if (s_.faces.capacity() == 0) {
+      s_.vertices.reserve(32);
+      s_.faces.reserve(128);
+      s_.heap.reserve(128);
+      s_.stack.reserve(32);
+      s_.rim.reserve(32);
     }
     s_.vertices.clear();
     s_.faces.clear();

@@ -5,6 +5,7 @@
 
 #include "geometry/math_util.h"
 #include "penetration/contact_qp.h"
+#include "query/convex_pair.h"
 #include "query/epa.h"
 
 namespace sc::detail {
@@ -13,10 +14,18 @@ namespace {
 /// Global exit of one intersecting leaf pair: translating the target by depth * n
 /// (opponent frame) makes the two leaves touch. A flat Minkowski difference (two
 /// coplanar triangles of soups) touches at depth 0 along its plane normal.
-EpaResult leafExit(const GroupPairQuery& query, const LeafContact& c, const Rigid& pose) {
+EpaResult leafExit(const GroupPairQuery& query, const LeafContact& c, const Rigid& pose,
+                   ConvexPairCache& cache) {
   const Leaf lt = query.targetLeaf(c.t_leaf);
   const Leaf lo = query.opponentLeaf(c.o_leaf);
-  return penetrationDepth(*lt.poly, pose * lt.group_from_leaf, *lo.poly, lo.group_from_leaf);
+  const Rigid fa = pose * lt.group_from_leaf;
+  cache.gjk = SimplexCache();  // another leaf pair: the last one's vertex indices mean nothing
+  EpaResult e;
+  if (convexDepth(*lt.poly, fa, *lo.poly, lo.group_from_leaf, cache, e) !=
+      ConvexDepthStatus::Separated)
+    return e;
+  // The traversal found them intersecting, this GJK apart: touching within rounding.
+  return penetrationDepth(*lt.poly, fa, *lo.poly, lo.group_from_leaf);
 }
 
 /// Least-norm t with every row kept; falls back to the deepest row alone when the
@@ -53,7 +62,7 @@ bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
     for (const LeafContact& c : scratch.contacts) {
       if (!c.intersecting) continue;
       any = true;
-      const EpaResult e = leafExit(query, c, pose);
+      const EpaResult e = leafExit(query, c, pose, scratch.depth);
       // Row in the total translation: n . (t' - t) >= depth + skin.
       scratch.normals.push_back(e.normal);
       scratch.offsets.push_back(e.depth + skin + e.normal.dot(t));

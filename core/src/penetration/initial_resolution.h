@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "query/convex_pair.h"
 #include "query/group_pair_query.h"
 #include "smartcollision/settings.h"
 
@@ -15,10 +16,11 @@ struct ResolutionScratch {
   std::vector<LeafContact> contacts;
   std::vector<Vec3> normals;    ///< one row per intersecting leaf pair met so far
   std::vector<double> offsets;  ///< row: normal . t >= offset, t the total translation
+  ConvexPairCache depth;        ///< the leaf pairs' EPA work arrays
 };
 
 /// Outline: the intersecting leaf pairs at `goal` each give a global exit (EPA on the
-/// two convex leaves: direction n, depth d), a half-space n . t >= d + skin on the
+/// two convex leaves, convexDepth: direction n, depth d), a half-space n . t >= d + skin on the
 /// target's translation t. The smallest t satisfying every half-space met so far is
 /// tried; pairs it brings into intersection add their own half-spaces. Translation
 /// only: the orientation is the input's, as in Input mode.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geometry/math_util.h"
+#include "penetration/convex_resolution.h"
 #include "penetration/initial_resolution.h"
 #include "penetration/proxy_tracker.h"
 #include "penetration/result_invariants.h"
@@ -19,6 +20,7 @@ struct PairState {
   GroupPairQuery query[2];
   ProxyTracker tracker[2];
   ResolutionScratch resolution;
+  ConvexPairCache convex[2];  ///< per direction: the convex fast path's warm start
   // The last update per direction, for contactPoints().
   ProxyOutcome last[2];
   Rigid goal[2];
@@ -103,14 +105,20 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   ProxyTracker& tracker = state.tracker[dir];
   const Vec3& center = target.placement.local_center;
   const SceneSettings settings = effectiveSettings(requested, query, goal * center);
-  tracker.update(query, goal, center, settings, outcome);
   Rigid free_pose;
-  if (outcome.code == ErrorCode::InvalidInitialTransformation &&
-      settings.resolve_initial_intersection &&
-      resolveInitialIntersection(query, goal, settings, free_pose, state.resolution)) {
-    // Start tracking at the free pose, then move to the goal as on any later frame.
-    tracker.update(query, free_pose, center, settings, outcome);
+  if (!tracker.tracking() && settings.resolve_initial_intersection &&
+      resolveConvexPair(query, target, opponent, goal, settings, state.convex[dir], outcome,
+                        free_pose)) {
+    tracker.startAt(free_pose);  // convex pair first seen intersecting: exact, direct
+  } else {
     tracker.update(query, goal, center, settings, outcome);
+    if (outcome.code == ErrorCode::InvalidInitialTransformation &&
+        settings.resolve_initial_intersection &&
+        resolveInitialIntersection(query, goal, settings, free_pose, state.resolution)) {
+      // Start tracking at the free pose, then move to the goal as on any later frame.
+      tracker.update(query, free_pose, center, settings, outcome);
+      tracker.update(query, goal, center, settings, outcome);
+    }
   }
   toWorld(outcome, target, opponent, query, settings.tolerance, out);
   // Debug builds: a result breaking its contract aborts here, at its source.

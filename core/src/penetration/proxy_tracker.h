@@ -48,6 +48,15 @@ class ProxyTracker {
               const SceneSettings& settings, ProxyOutcome& out);
   void forget() { tracking_ = false; }
   bool tracking() const { return tracking_; }
+  /// Starts tracking with the proxy at `proxy`, a free pose found elsewhere (the
+  /// convex fast path of the initial-intersection resolution), penetrating since
+  /// this update as after the general path.
+  void startAt(const Rigid& proxy) {
+    tracking_ = true;
+    penetrating_ = true;
+    ran_out_ = false;
+    proxy_ = proxy;
+  }
 
  private:
   struct Row {

@@ -19,11 +19,16 @@ enum class EpaStatus : std::uint8_t {
 
 struct EpaResult {
   EpaStatus status = EpaStatus::Touching;
-  double depth = 0.0;            ///< >= 0
-  Vec3 normal = Vec3::UnitZ();   ///< unit: translating A by depth * normal separates them
-  Vec3 point_a = Vec3::Zero();   ///< deepest point of A, common frame
-  Vec3 point_b = Vec3::Zero();   ///< matching point of B, common frame
+  double depth = 0.0;           ///< >= 0
+  Vec3 normal = Vec3::UnitZ();  ///< unit: translating A by depth * normal separates them
+  Vec3 point_a = Vec3::Zero();  ///< deepest point of A, common frame
+  Vec3 point_b = Vec3::Zero();  ///< matching point of B, common frame
   int iterations = 0;
+  /// Vertex indices on A and B (into ConvexPolytope::vertices) of the face the depth
+  /// was read from, when known (convexDepth); `face_count` 0 otherwise.
+  int face_count = 0;
+  int face_a[3] = {-1, -1, -1};
+  int face_b[3] = {-1, -1, -1};
 };
 
 /// Outline, and where it departs from the textbook algorithm:

@@ -66,42 +66,75 @@ bool faceIsVirtual(const ConvexPolytope& poly, std::size_t f) {
   return f >= poly.face_source.size() || poly.face_source[f] == -1;
 }
 
+/// Calls f(face) for every face around vertex v (found by a scan if the polytope has
+/// no vertex-face lists).
+template <class F>
+void forFacesAround(const ConvexPolytope& poly, int v, F&& f) {
+  if (poly.vertex_face_start.empty()) {
+    for (std::size_t g = 0; g < poly.faces.size(); ++g) {
+      const Tri& t = poly.faces[g];
+      if (t[0] == v || t[1] == v || t[2] == v) f(static_cast<int>(g));
+    }
+    return;
+  }
+  for (int k = poly.vertex_face_start[v]; k < poly.vertex_face_start[v + 1]; ++k)
+    f(poly.vertex_faces[static_cast<std::size_t>(k)]);
+}
+
 /// A real edge lies on at least one input triangle.
 bool edgeIsVirtual(const ConvexPolytope& poly, int u, int v) {
-  for (std::size_t f = 0; f < poly.faces.size(); ++f) {
+  bool real = false;
+  forFacesAround(poly, u, [&](int f) {
     const Tri& t = poly.faces[f];
     const bool has_u = t[0] == u || t[1] == u || t[2] == u;
     const bool has_v = t[0] == v || t[1] == v || t[2] == v;
-    if (has_u && has_v && !faceIsVirtual(poly, f)) return false;
-  }
-  return true;
+    real = real || (has_u && has_v && !faceIsVirtual(poly, static_cast<std::size_t>(f)));
+  });
+  return !real;
 }
 
-/// Best face by (contains the point, is real, distance); only faces touching a
-/// seed unless `all`. Returns -1 when no face qualifies.
-int bestFace(const ConvexPolytope& poly, const Vec3& point, const Seeds& seeds, bool all,
-             double tolerance) {
+/// The preferred face by (contains the point, is real, distance), ties to the lower
+/// index, whatever order the faces are offered in.
+struct FaceChoice {
+  double tolerance;
   int best = -1;
   bool best_inside = false, best_real = false;
   double best_d = std::numeric_limits<double>::infinity();
-  for (std::size_t f = 0; f < poly.faces.size(); ++f) {
+
+  void offer(const ConvexPolytope& poly, const Vec3& point, int f) {
     const Tri& t = poly.faces[f];
-    if (!all && !seeds.has(t[0]) && !seeds.has(t[1]) && !seeds.has(t[2])) continue;
     const Vec3 corners[3] = {poly.vertices[t[0]], poly.vertices[t[1]], poly.vertices[t[2]]};
     const double d = pointTriangleDistance(point, corners);
     const bool inside = d <= tolerance;
-    const bool real = !faceIsVirtual(poly, f);
+    const bool real = !faceIsVirtual(poly, static_cast<std::size_t>(f));
     const bool better = best < 0 || (inside != best_inside         ? inside
                                      : inside && real != best_real ? real
-                                                                   : d < best_d);
+                                     : d != best_d                 ? d < best_d
+                                                                   : f < best);
     if (better) {
-      best = static_cast<int>(f);
+      best = f;
       best_inside = inside;
       best_real = real;
       best_d = d;
     }
   }
-  return all || best_inside ? best : -1;
+};
+
+/// Best face by (contains the point, is real, distance); only faces touching a
+/// seed unless `all`. Returns -1 when no face qualifies.
+int bestFace(const ConvexPolytope& poly, const Vec3& point, const Seeds& seeds, bool all,
+             double tolerance) {
+  FaceChoice choice{tolerance};
+  if (all) {
+    for (std::size_t f = 0; f < poly.faces.size(); ++f)
+      choice.offer(poly, point, static_cast<int>(f));
+    return choice.best;
+  }
+  // The faces around the seeds, through the vertex-face lists (a face shared by two
+  // seeds is offered twice: harmless).
+  for (int k = 0; k < seeds.count; ++k)
+    forFacesAround(poly, seeds.ids[k], [&](int f) { choice.offer(poly, point, f); });
+  return choice.best_inside ? choice.best : -1;
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "geometry/math_util.h"
 #include "geometry/triangle_distance.h"
@@ -487,15 +488,28 @@ struct GroupPairQuery::DistancePolicy {
   }
 };
 
+bool GroupPairQuery::seedHelps(const Rigid& o_from_t) const {
+  if (seed_.t_leaf < 0 || seed_.t_leaf >= t_leaf_count_ || seed_.o_leaf >= o_leaf_count_)
+    return false;
+  // Moved farther than the seed pair's gap and its target leaf's radius (a jump), it
+  // bounds the distance only loosely and its refinement on real triangles can cost
+  // more than a traversal without it.
+  if (!known_) return true;
+  const double reach = known_gap_ + leafOf(t_slots_, seed_.t_leaf).radius;
+  return displacementBound(known_pose_, o_from_t) <= reach;
+}
+
 bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafContact& best) {
   counters_ = TraversalCounters();
   placeTargets(o_from_t);
   DistancePolicy policy{*this, max_distance, best};
-  if (seed_.t_leaf >= 0 && seed_.t_leaf < t_leaf_count_ && seed_.o_leaf < o_leaf_count_) {
+  if (seedHelps(o_from_t)) {
     bool beyond = false;
     const LeafContact c =
         exactLeafDistance(leafPair(seed_.t_leaf, seed_.o_leaf), max_distance, beyond);
     if (!beyond) policy.offer(c);
+  } else {
+    seed_ = LeafPair();  // the traversal measures it in its turn
   }
   if (!(policy.found && best.intersecting)) traverse(policy);
   if (policy.found) seed_ = {best.t_leaf, best.o_leaf};
@@ -825,6 +839,8 @@ struct GroupPairQuery::ToiPolicy {
   double stop_gap;
   const std::vector<LeafPair>& skip;
   double limit = 1.0;
+  SimplexCache scratch_;                ///< warm start of the planes sampled along the motion
+  static constexpr int kMaxPlanes = 6;  ///< sampled per node pair, past the two ends
 
   // The pair's gap shrinks by at most limit * |delta| along the way; a pair that
   // starts within stop_gap would block at once.
@@ -834,7 +850,9 @@ struct GroupPairQuery::ToiPolicy {
   double reach() const { return limit * reach_length + 0.5 * stop_gap; }
   double splitWithin() const { return -1.0; }
   bool full() const { return false; }
-  bool admits(const NodePair& p) {
+  /// May tighten p's bound with the GJK it runs (then marked refined, so the
+  /// traversal does not run it again).
+  bool admits(NodePair& p) {
     // Swept bounding spheres: the target sphere's centre runs along a segment.
     const HullBvhNode& t = q.t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
     const Slot& os = q.o_slots_[p.o_slot];
@@ -844,30 +862,52 @@ struct GroupPairQuery::ToiPolicy {
         pointSegmentDistance(os.group_from_piece * o.center, c0, c0 + limit * delta) - t.radius -
         o.radius;
     if (swept > 0.5 * stop_gap) return false;
-    return !planeKeepsApart(p);
+    return !planesKeepApart(p);
   }
-  /// True when the hulls stay more than stop_gap apart up to `limit`, by their
-  /// separating planes: along the normal n of the plane at the start they part at
-  /// the rate n.delta, whatever the distance does, so it keeps them apart up to some
-  /// s1; the plane at `limit` does back to some s0; s0 < s1 covers the motion. Then
-  /// every leaf pair below advances to `limit`: a motion along the contact (a jump
-  /// sideways) prunes what the distance bound alone, assuming the worst direction,
-  /// would keep.
-  bool planeKeepsApart(const NodePair& p) {
-    const double s1 = openUntil(q.nodeGjk(p, reach(), -1.0), -1.0);
+  /// True when the hulls stay more than stop_gap apart up to `limit`, by separating
+  /// planes: along the normal n of the plane at some point s of the motion they part
+  /// at the rate n.delta, whatever the distance does, so that plane keeps them apart
+  /// over an interval around s. The planes at the start and at `limit` go first, then
+  /// planes in the middle of what is left uncovered, a few per pair. A motion along
+  /// the contact (a jump sideways) prunes what the distance bound alone, assuming the
+  /// worst direction, would keep.
+  bool planesKeepApart(NodePair& p) {
+    const GjkResult r = q.nodeGjk(p, reach(), -1.0);
+    if (r.status == GjkStatus::BeyondMaxDistance) return true;
+    p.bound = std::max(p.bound, r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound);
+    p.refined = true;
+    if (prunes(p.bound)) return true;
+    const double s1 = openInterval(r, 0.0).second;
     if (s1 >= limit) return true;
     if (s1 < 0.0) return false;
-    SimplexCache cold;  // the pair's cache keeps its warm start at the start pose
-    const Rigid end = translated(q.o_from_piece_[p.t_slot], limit * delta);
-    const double s0 = limit - openUntil(q.nodeGjkAt(p, end, GjkSettings(), cold), 1.0);
-    return s0 < s1;
+    // Later planes start from the start's simplex; the pair's cache keeps that one.
+    scratch_ = q.cacheOf(p);
+    const double s0 = openInterval(sampleAt(p, limit), limit).first;
+    return s0 <= limit && coverGap(p, s1, s0, kMaxPlanes);
   }
-  /// How far along the motion (sign -1) or back from its end (+1) the separating
-  /// plane of `r` stays more than stop_gap open; -1 when it is not open there.
-  double openUntil(const GjkResult& r, double sign) const {
-    if (r.status != GjkStatus::Separated || r.distance <= stop_gap) return -1.0;
-    const double closing = sign * r.normal.dot(delta);
-    return closing <= 0.0 ? kInfinity : (r.distance - stop_gap) / closing;
+  /// True when planes sampled in (lo, hi) cover it, at most `planes` of them.
+  bool coverGap(const NodePair& p, double lo, double hi, int planes) {
+    if (lo >= hi) return true;
+    if (planes <= 0) return false;
+    const double mid = 0.5 * (lo + hi);
+    const std::pair<double, double> open = openInterval(sampleAt(p, mid), mid);
+    if (open.first > mid) return false;  // not open at mid
+    const int left = (planes - 1) / 2;
+    return coverGap(p, lo, open.first, left) && coverGap(p, open.second, hi, planes - 1 - left);
+  }
+  GjkResult sampleAt(const NodePair& p, double s) {
+    const Rigid at = translated(q.o_from_piece_[p.t_slot], s * delta);
+    return q.nodeGjkAt(p, at, GjkSettings(), scratch_);
+  }
+  /// Where along the motion the separating plane of `r`, found at s, stays more than
+  /// stop_gap open; an empty interval (first > s) when it is not open at s.
+  std::pair<double, double> openInterval(const GjkResult& r, double s) const {
+    if (r.status != GjkStatus::Separated || r.distance <= stop_gap) return {kInfinity, -1.0};
+    const double room = r.distance - stop_gap;
+    const double closing = -r.normal.dot(delta);  // per unit of s, forwards
+    const double ahead = closing <= 0.0 ? kInfinity : room / closing;
+    const double behind = closing >= 0.0 ? kInfinity : room / -closing;
+    return {s - behind, s + ahead};
   }
   bool visit(const NodePair& p) {
     const Slot& ts = q.t_slots_[p.t_slot];
@@ -875,7 +915,8 @@ struct GroupPairQuery::ToiPolicy {
     const LeafPair leaves{ts.first_leaf + ts.data->hierarchy.nodes[p.t_node].polytope,
                           os.first_leaf + os.data->hierarchy.nodes[p.o_node].polytope};
     if (std::binary_search(skip.begin(), skip.end(), leaves)) return true;
-    if (!admits(p)) return true;
+    NodePair again = p;  // the limit may have shrunk since p was admitted
+    if (!admits(again)) return true;
     // Conservative advancement: the separating plane of the current closest points
     // stays separating while the target moves towards it by less than the gap.
     const Rigid& start = q.o_from_piece_[p.t_slot];
@@ -906,7 +947,7 @@ double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, 
     return 1.0;
   }
   placeTargets(o_from_t);
-  ToiPolicy policy{*this, delta, reach_length, stop_gap, skip};
+  ToiPolicy policy{*this, delta, reach_length, stop_gap, skip, 1.0, SimplexCache()};
   // A pair that can block starts within this reach. When contactsNear()'s pairs hold
   // every pair within it, advance only those, nearest first; a pair whose gap (less
   // the translation since) rules it out is pruned as the traversal would.

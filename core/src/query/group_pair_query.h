@@ -235,6 +235,8 @@ class GroupPairQuery {
   template <class Policy>
   bool runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget,
                     double until = kInfinity);
+  /// True when the last closest leaf pair is worth measuring first at o_from_t.
+  bool seedHelps(const Rigid& o_from_t) const;
   /// Lower bound of the distance at `o_from_t` from the last distance(), or -inf.
   double knownLowerBound(const Rigid& o_from_t) const;
 

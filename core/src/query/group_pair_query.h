@@ -13,58 +13,12 @@
 
 #include "preprocess/piece_data.h"
 #include "query/gjk.h"
+#include "query/leaf_types.h"
+#include "query/near_pairs.h"
 #include "query/pair_cache.h"
 #include "smartcollision/collision.h"
 
 namespace sc::detail {
-
-/// A convex leaf of a group, placed in the group's frame.
-struct Leaf {
-  const ConvexPolytope* poly = nullptr;
-  Rigid group_from_leaf;
-  int part = -1;               ///< index into GroupView::parts
-  int piece = -1;              ///< piece index within the part's model
-  Vec3 center = Vec3::Zero();  ///< bounding sphere in the group frame
-  double radius = 0.0;
-};
-
-/// A target leaf and an opponent leaf, by their indices in the query's leaf lists.
-struct LeafPair {
-  int t_leaf = -1;
-  int o_leaf = -1;
-
-  bool operator<(const LeafPair& o) const {
-    return t_leaf != o.t_leaf ? t_leaf < o.t_leaf : o_leaf < o.o_leaf;
-  }
-  bool operator==(const LeafPair& o) const { return t_leaf == o.t_leaf && o_leaf == o.o_leaf; }
-};
-
-/// One leaf pair's closest points or contact, in the opponent group's frame.
-struct LeafContact {
-  int t_leaf = -1;
-  int o_leaf = -1;
-  bool intersecting = false;
-  double gap = 0.0;             ///< GJK distance; 0 when intersecting
-  Vec3 normal = Vec3::UnitX();  ///< unit, from the opponent leaf towards the target leaf
-  Vec3 point_t = Vec3::Zero();
-  Vec3 point_o = Vec3::Zero();
-  int simplex_count = 0;
-  int simplex_t[4] = {-1, -1, -1, -1};
-  int simplex_o[4] = {-1, -1, -1, -1};
-};
-
-/// Work done by the last traversal (for tests and benchmarks).
-struct TraversalCounters {
-  int node_pairs = 0;     ///< node pairs taken from the queue
-  int node_gjk = 0;       ///< GJK runs on inner node pairs (lower bounds)
-  int leaf_gjk = 0;       ///< GJK runs on leaf pairs
-  int refined = 0;        ///< leaf pairs measured on their real triangles
-  bool shortcut = false;  ///< answered from the last distance without traversal
-  /// contactsNear(): node pairs and GJK runs of the rebuild run ahead of need.
-  int ahead_node_pairs = 0;
-  int ahead_gjk = 0;
-  bool ahead_installed = false;  ///< that rebuild replaced the pairs (done, or as far as due)
-};
 
 /// Per directed group pair; not thread-safe (one per pair and direction).
 /// Leaves are numbered per group: the pieces of the parts in order, each piece's
@@ -79,7 +33,7 @@ class GroupPairQuery {
   int targetLeafCount() const { return t_leaf_count_; }
   /// Radius of a sphere holding the target group: the length its relative
   /// thresholds scale with (set by bind(), so no query pays for it).
-  double targetSize() const { return t_radius_; }
+  double targetSize() const { return near_.target().radius; }
   int opponentLeafCount() const { return o_leaf_count_; }
   Leaf targetLeaf(int t_leaf) const { return leafOf(t_slots_, t_leaf); }
   Leaf opponentLeaf(int o_leaf) const { return leafOf(o_slots_, o_leaf); }
@@ -157,15 +111,6 @@ class GroupPairQuery {
     double radius = 0.0;
     int face = -1;  ///< index into the leaf's faces
   };
-  /// A node of each side and a lower bound of their distance.
-  struct NodePair {
-    double bound = 0.0;
-    int t_slot = 0;
-    int t_node = 0;
-    int o_slot = 0;
-    int o_node = 0;
-    bool refined = false;  ///< bound from GJK on the pair's own polytopes
-  };
   struct DistancePolicy;
   struct ContactsPolicy;
   struct IntersectPolicy;
@@ -193,13 +138,16 @@ class GroupPairQuery {
   GjkResult nodeGjkAt(const NodePair& p, const Rigid& o_from_piece, const GjkSettings& settings,
                       SimplexCache& cache);
   /// Largest displacement of a target point from pose `from` to pose `to`.
-  double displacementBound(const Rigid& from, const Rigid& to) const;
-  /// True when contactsNear()'s pairs include every leaf pair within `reach` at o_from_t.
+  double displacementBound(const Rigid& from, const Rigid& to) const {
+    return near_.target().displacement(from, to);
+  }
   /// contactsNear() without its memo of the last call.
   void contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                             std::vector<LeafContact>& out);
-  bool nearCovers(const Rigid& o_from_t, double reach) const;
-  /// near_pairs_ (sorted, measured at `pose`) become the pairs within `reach` there.
+  /// contactsNear()'s pairs at o_from_t, none farther than `threshold`, into `out`.
+  void evaluateNear(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
+  /// near_.mutablePairs() (sorted, measured at `pose`) become the pairs within `reach`
+  /// there.
   void installNear(const Rigid& pose, double reach);
   /// The next rebuild, started at o_from_t ahead of need and run a little per call.
   void startPendingNear(const Rigid& o_from_t, double reach);
@@ -208,12 +156,6 @@ class GroupPairQuery {
   /// and installs what it found, going on afterwards. Dropped when it no longer
   /// covers o_from_t within `threshold`. Returns the work it did.
   TraversalCounters advancePendingNear(const Rigid& o_from_t, double threshold, bool finish);
-  /// Node pairs the pending rebuild may take in this call (-1: no limit).
-  int pendingBudget(const Rigid& o_from_t, double threshold) const;
-  /// Prepares nearGapBound() for the pose o_from_t; the index it gets in near_poses_.
-  int prepareNearBounds(const Rigid& o_from_t);
-  /// Lower bound of near pair i's gap at the pose of the last prepareNearBounds().
-  double nearGapBound(std::size_t i) const;
   /// GJK on a leaf pair, the target piece placed by `o_from_piece`, warm-started from
   /// `cache` (the pair's entry of caches_ when null).
   LeafContact evaluate(const NodePair& p, const Rigid& o_from_piece, double max_distance,
@@ -235,6 +177,8 @@ class GroupPairQuery {
   template <class Policy>
   bool runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget,
                     double until = kInfinity);
+  /// True when the last closest leaf pair is worth measuring first at o_from_t.
+  bool seedHelps(const Rigid& o_from_t) const;
   /// Lower bound of the distance at `o_from_t` from the last distance(), or -inf.
   double knownLowerBound(const Rigid& o_from_t) const;
 
@@ -250,55 +194,7 @@ class GroupPairQuery {
   bool known_ = false;
   Rigid known_pose_;
   double known_gap_ = 0.0;
-  /// contactsNear()'s pairs: every leaf pair within near_reach_ at near_pose_.
-  bool near_valid_ = false;
-  Rigid near_pose_;
-  double near_reach_ = 0.0;
-  std::vector<LeafContact> near_pairs_;
-  /// near_pairs_' warm starts, in the same order: read in sequence, where the
-  /// set-associative caches_ would be probed at random.
-  std::vector<SimplexCache> near_caches_;
-  /// Per near pair, in the same order: its gap when last evaluated, at
-  /// near_poses_[pose], and its target leaf's sphere (group frame), which bounds how
-  /// much that gap can shrink since. Re-evaluating a pair refreshes its gap, so only
-  /// pairs near the threshold are evaluated again, however far the group moved.
-  struct NearGap {
-    Vec3 center = Vec3::Zero();
-    double radius = 0.0;
-    double gap = 0.0;
-    int pose = 0;
-  };
-  std::vector<NearGap> near_gaps_;
-  std::vector<Rigid> near_poses_;  ///< poses a near pair was last evaluated at
-  /// Per near_poses_ entry, for the current query: the rotation and translation change.
-  struct PoseChange {
-    Mat3 rotation;
-    Vec3 translation;
-    double spin;  ///< Frobenius norm of the rotation change
-  };
-  std::vector<PoseChange> near_changes_;
-  /// A rebuild of the near pairs spread over calls, so that no call pays for a whole
-  /// traversal while the pairs still cover the motion: its pose, reach, queue,
-  /// placements and the pairs found so far.
-  struct PendingNear {
-    bool active = false;
-    Rigid pose;
-    double reach = 0.0;
-    std::vector<NodePair> heap;
-    std::vector<Rigid> o_from_piece;
-    std::vector<LeafContact> found;
-    int work = 0;     ///< node pairs taken so far
-    Rigid last_pose;  ///< pose of the last call that ran it (the target's speed)
-  };
-  PendingNear pending_;
-  int expected_near_work_ = 0;  ///< node pairs of the last rebuild: sets the next one's pace
-  /// contactsNear()'s last answer, valid while near_valid_ (every rebuild rewrites it).
-  bool memo_valid_ = false;
-  Rigid memo_pose_;
-  double memo_threshold_ = 0.0;
-  std::vector<LeafContact> memo_out_;
-  Vec3 t_center_ = Vec3::Zero();  ///< sphere holding the target group (its frame)
-  double t_radius_ = 0.0;
+  NearPairs near_;  ///< contactsNear()'s warm state; holds the target group's sphere
   TraversalCounters counters_;
   // Lazily built leaf lists (targetLeaves / opponentLeaves); a cache, not state.
   mutable std::vector<Leaf> t_leaves_, o_leaves_;

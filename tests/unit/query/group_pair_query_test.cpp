@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -415,6 +416,49 @@ TEST_F(GroupPairQueryTest, ContactsNearAndItsTimeOfImpactEqualTraversalsAlongASl
       "[ group pair query ] contactsNear: %d of %d steps reused, %d with contacts, %d "
       "rebuilt ahead; time of impact from the pairs %d times, %d blocked\n",
       reused, steps, with_contacts, ahead, toi_from_pairs, toi_blocked);
+}
+
+// Warm state after jumps of every size (beyond the kept pairs' reach, up to a
+// teleport): the carried query answers what a fresh one answers at that pose, for
+// the distance, the contacts near and a time of impact, and the kept pairs it no
+// longer covers are rebuilt, not followed.
+TEST_F(GroupPairQueryTest, AfterAJumpTheCarriedQueryAnswersAsAFreshOne) {
+  GroupPairQuery warm;
+  warm.bind(target_, opponent_);
+  test::Rng rng(53);
+  const double threshold = 0.01, margin = 0.01;
+  int jumps = 0, with_contacts = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run) {
+    Rigid pose = randomPose(rng, 0.6);
+    for (int k = 0; k < 24; ++k) {
+      SCOPED_TRACE(k);
+      const bool jump = k % 6 == 5;
+      const double length = jump ? std::array<double, 3>{0.05, 0.2, 1.0}[k / 6 % 3] : 0.002;
+      pose.translation += length * test::randomDirection(rng);
+      if (jump) pose.rotation = test::randomRotation(rng).toRotationMatrix() * pose.rotation;
+      GroupPairQuery fresh;
+      fresh.bind(target_, opponent_);
+      LeafContact w, f;
+      const bool w_found = warm.distance(pose, kInfinity, w);
+      ASSERT_EQ(w_found, fresh.distance(pose, kInfinity, f));
+      EXPECT_NEAR(w.gap, f.gap, 1e-12);
+      std::vector<LeafContact> got, want;
+      warm.contactsNear(pose, threshold, margin, got);
+      fresh.contacts(pose, threshold, want);
+      std::set<std::pair<int, int>> got_pairs, want_pairs;
+      for (const LeafContact& c : got) got_pairs.insert({c.t_leaf, c.o_leaf});
+      for (const LeafContact& c : want) want_pairs.insert({c.t_leaf, c.o_leaf});
+      EXPECT_EQ(got_pairs, want_pairs);
+      const Vec3 delta = 0.05 * test::randomDirection(rng);
+      EXPECT_NEAR(warm.translationToi(pose, delta, 0.002, {}),
+                  fresh.translationToi(pose, delta, 0.002, {}), 1e-9);
+      jumps += jump;
+      with_contacts += !want.empty();
+    }
+  }
+  EXPECT_GT(with_contacts, 10);
+  std::printf("[ group pair query ] after %d jumps: warm equals fresh; %d poses with contacts\n",
+              jumps, with_contacts);
 }
 
 // A drifting, slowly turning target (a body pushed along a surface): the kept pairs

@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+// GroupPairQuery::contactsNear: contacts at poses that differ by small motions, from
+// the pairs kept by one traversal with a margin (their state and the rule that drops
+// it: near_pairs.h), rebuilt ahead of need a little per call.
+#include <algorithm>
+#include <cmath>
+
+#include "query/group_pair_traversal.h"
+
+namespace sc::detail {
+
+double GroupPairQuery::nearCoveredReach(const Rigid& o_from_t) const {
+  // The last distance bounds every pair from below: an answer is complete up to that
+  // too (an empty one from contactsNear's shortcut, in particular).
+  return std::max(near_.coveredReach(o_from_t), knownLowerBound(o_from_t));
+}
+
+void GroupPairQuery::contactsNear(const Rigid& o_from_t, double threshold, double margin,
+                                  std::vector<LeafContact>& out) {
+  // Every pair is farther than the threshold by the last distance, less the motion
+  // since (a free proxy): nothing to gather, and no near pairs to keep or rebuild.
+  if (knownLowerBound(o_from_t) > threshold) {
+    out.clear();
+    counters_ = TraversalCounters();
+    counters_.shortcut = true;
+    return;
+  }
+  // The same pose and threshold as the last call (a slide that did not move, then the
+  // depth's projection at the same proxy): its answer, without the GJK calls.
+  if (const std::vector<LeafContact>* memo = near_.memo(o_from_t, threshold)) {
+    counters_ = TraversalCounters();
+    out = *memo;
+    return;
+  }
+  contactsNearUncached(o_from_t, threshold, margin, out);
+  // The nearest pair seeds the next distance(): a proxy leaving contact measures its
+  // distance next to where it touched, not where it was last seen apart.
+  if (!out.empty()) seed_ = {out.front().t_leaf, out.front().o_leaf};
+  near_.remember(o_from_t, threshold, out);
+}
+
+void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
+                                          std::vector<LeafContact>& out) {
+  out.clear();
+  // The kept pairs no longer cover this pose: what is left of a rebuild started
+  // ahead is cheaper than a new one, when that still covers it.
+  const bool due = !near_.covers(o_from_t, threshold);
+  const TraversalCounters ahead = advancePendingNear(o_from_t, threshold, due);
+  if (!near_.covers(o_from_t, threshold)) {
+    // Nothing gathered ahead covers it: a rebuild here, run as far as this pose needs
+    // and then on, a little per call, as one started ahead.
+    startPendingNear(o_from_t, threshold + margin);
+    counters_ = advancePendingNear(o_from_t, threshold, true);
+    for (const LeafContact& c : near_.pairs())  // already sorted
+      if (c.gap <= threshold) out.push_back(c);
+  } else {
+    evaluateNear(o_from_t, threshold, out);
+    // A third of the slack used: the next rebuild starts here, spread over the calls
+    // while the rest lasts.
+    const double slack = near_.reach() - threshold;
+    if (!near_.pending().active && displacementBound(near_.pose(), o_from_t) > slack / 3.0)
+      startPendingNear(o_from_t, threshold + margin);
+  }
+  counters_.ahead_node_pairs = ahead.node_pairs;
+  counters_.ahead_gjk = ahead.node_gjk + ahead.leaf_gjk;
+  counters_.ahead_installed = ahead.ahead_installed;
+}
+
+void GroupPairQuery::evaluateNear(const Rigid& o_from_t, double threshold,
+                                  std::vector<LeafContact>& out) {
+  counters_ = TraversalCounters();
+  placeTargets(o_from_t);
+  const int pose = near_.prepareBounds(o_from_t);
+  for (std::size_t i = 0; i < near_.pairs().size(); ++i) {
+    if (near_.gapBound(i) > threshold) continue;
+    const LeafContact& candidate = near_.pairs()[i];
+    const NodePair p = leafPair(candidate.t_leaf, candidate.o_leaf);
+    bool beyond = false;
+    // Evaluated up to the set's reach: an exact gap there keeps the pair pruned for
+    // longer than the lower bound an early exit at the threshold would give.
+    const LeafContact c =
+        evaluate(p, o_from_piece_[p.t_slot], near_.reach(), beyond, &near_.cache(i));
+    near_.measured(i, c.gap, pose);
+    if (!beyond && c.gap <= threshold) out.push_back(c);
+  }
+  sortContacts(out);
+}
+
+void GroupPairQuery::installNear(const Rigid& pose, double reach) {
+  near_.install(pose, reach);
+  for (const LeafContact& c : near_.pairs()) {
+    const NodePair p = leafPair(c.t_leaf, c.o_leaf);
+    const Slot& ts = t_slots_[p.t_slot];
+    const HullBvhNode& node = ts.data->hierarchy.nodes[p.t_node];
+    near_.keep(cacheOf(p), ts.group_from_piece * node.center, node.radius, c.gap);
+  }
+}
+
+void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
+  NearPairs::Pending& pending = near_.pending();
+  pending.active = true;
+  pending.pose = o_from_t;
+  pending.reach = reach;
+  pending.found.clear();
+  pending.work = 0;
+  pending.last_pose = o_from_t;
+  // The traversal reads the placements from o_from_piece_: the pending ones are placed
+  // there and lent back to it on every call.
+  o_from_piece_.swap(pending.o_from_piece);
+  placeTargets(o_from_t);
+  ContactsPolicy policy{*this, reach, pending.found};
+  seedTraversal(policy, pending.heap);
+  o_from_piece_.swap(pending.o_from_piece);
+}
+
+TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, double threshold,
+                                                     bool finish) {
+  NearPairs::Pending& pending = near_.pending();
+  if (!pending.active) return {};
+  if (!near_.pendingCovers(o_from_t, threshold)) {  // and never will again
+    near_.dropPending();
+    return {};
+  }
+  const double need = displacementBound(pending.pose, o_from_t) + threshold;
+  const int budget = finish ? -1 : near_.pendingBudget(o_from_t, threshold);
+  // Due, it runs only as far as this pose and a few calls more need: the traversal
+  // takes node pairs nearest first, so every leaf pair nearer than its queue's front
+  // is among the pairs found (the pairs of a rebuild of that reach).
+  const double until = finish ? need + 0.5 * (pending.reach - need) : kInfinity;
+  pending.last_pose = o_from_t;
+  const TraversalCounters saved = counters_;
+  counters_ = TraversalCounters();
+  o_from_piece_.swap(pending.o_from_piece);
+  ContactsPolicy policy{*this, pending.reach, pending.found};
+  const bool done = runTraversal(policy, pending.heap, budget, until);
+  o_from_piece_.swap(pending.o_from_piece);
+  const TraversalCounters work = counters_;
+  counters_ = saved;
+  pending.work += work.node_pairs;
+  if (!done && !finish) return work;
+  TraversalCounters installed = work;
+  installed.ahead_installed = true;
+  if (!done) {  // installed as far as it got; it goes on
+    near_.mutablePairs() = pending.found;
+    sortContacts(near_.mutablePairs());
+    // A pair exactly at the front's bound may be still in the queue.
+    installNear(pending.pose, std::nextafter(pending.heap.front().bound, 0.0));
+    return installed;
+  }
+  sortContacts(pending.found);
+  const Rigid pose = pending.pose;
+  const double reach = pending.reach;
+  near_.finishPending();
+  installNear(pose, reach);
+  return installed;
+}
+
+}  // namespace sc::detail

@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+// The best-first traversal of two groups' hull hierarchies (group_pair_query.cpp's
+// outline), shared by the group pair query's files, with the contacts policy.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "query/group_pair_query.h"
+
+namespace sc::detail {
+
+/// Heap order: the smallest bound on top.
+struct Farther {
+  template <class P>
+  bool operator()(const P& a, const P& b) const {
+    return a.bound > b.bound;
+  }
+};
+
+// A policy says which bounds are pruned (`prunes`, monotone in the bound), how far
+// GJK on a node pair needs to look (`reach`), may veto a child pair (`admits`),
+// and takes leaf pairs (`visit`, false to stop).
+template <class Policy>
+void GroupPairQuery::traverse(Policy& policy) {
+  seedTraversal(policy, heap_);
+  runTraversal(policy, heap_, -1);
+}
+
+template <class Policy>
+void GroupPairQuery::seedTraversal(Policy& policy, std::vector<NodePair>& heap) {
+  heap.clear();
+  for (int ts = 0; ts < static_cast<int>(t_slots_.size()); ++ts) {
+    for (int os = 0; os < static_cast<int>(o_slots_.size()); ++os) {
+      NodePair root;
+      root.t_slot = ts;
+      root.o_slot = os;
+      root.bound = std::max(0.0, sphereBound(root));
+      if (policy.prunes(root.bound) || !policy.admits(root)) continue;
+      heap.push_back(root);
+      std::push_heap(heap.begin(), heap.end(), Farther());
+    }
+  }
+}
+
+template <class Policy>
+bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, int budget,
+                                  double until) {
+  for (int taken = 0; !heap.empty(); ++taken) {
+    if (budget >= 0 && taken >= budget) return false;
+    if (policy.full()) return false;  // the queue kept: its front bounds what is missing
+    const double front = heap.front().bound;
+    if (front >= until && !policy.prunes(front)) return false;
+    std::pop_heap(heap.begin(), heap.end(), Farther());
+    NodePair p = heap.back();
+    heap.pop_back();
+    if (policy.prunes(p.bound)) break;  // every pair left is at least as far
+    ++counters_.node_pairs;
+    const HullBvhNode& tn = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
+    const HullBvhNode& on = o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node];
+    if (tn.leaf() && on.leaf()) {
+      if (!policy.visit(p)) break;
+      continue;
+    }
+    if (!p.refined) {
+      p.bound = std::max(p.bound, nodeLowerBound(p, policy.reach(), policy.splitWithin()));
+      p.refined = true;
+      if (policy.prunes(p.bound)) continue;
+      if (!heap.empty() && p.bound > heap.front().bound) {
+        heap.push_back(p);
+        std::push_heap(heap.begin(), heap.end(), Farther());
+        continue;
+      }
+    }
+    const bool split_t = on.leaf() || (!tn.leaf() && tn.radius >= on.radius);
+    const HullBvhNode& split = split_t ? tn : on;
+    for (const int child : {split.left, split.right}) {
+      NodePair c = p;
+      (split_t ? c.t_node : c.o_node) = child;
+      c.refined = false;
+      c.bound = std::max(p.bound, sphereBound(c));
+      if (policy.prunes(c.bound) || !policy.admits(c)) continue;
+      heap.push_back(c);
+      std::push_heap(heap.begin(), heap.end(), Farther());
+    }
+  }
+  heap.clear();
+  return true;
+}
+
+struct GroupPairQuery::ContactsPolicy {
+  GroupPairQuery& q;
+  double threshold;
+  std::vector<LeafContact>& out;
+
+  bool prunes(double bound) const { return bound > threshold; }
+  double reach() const { return threshold; }
+  /// Every pair within the threshold is visited, in any order: a node pair known to
+  /// be within it is split without its exact distance.
+  double splitWithin() const { return threshold; }
+  /// At kMaxContacts the traversal stops with its queue kept: what it found includes
+  /// every pair nearer than the queue front's lower bound.
+  bool full() const { return out.size() >= kMaxContacts; }
+  bool admits(const NodePair&) const { return true; }
+  bool visit(const NodePair& p) {
+    bool beyond = false;
+    const LeafContact c = q.evaluate(p, q.o_from_piece_[p.t_slot], threshold, beyond);
+    if (!beyond && c.gap <= threshold) out.push_back(c);
+    return true;
+  }
+};
+
+/// Nearest first, ties by leaf indices: one order whatever found the contacts.
+inline void sortContacts(std::vector<LeafContact>& contacts) {
+  std::sort(contacts.begin(), contacts.end(), [](const LeafContact& a, const LeafContact& b) {
+    if (a.gap != b.gap) return a.gap < b.gap;
+    return LeafPair{a.t_leaf, a.o_leaf} < LeafPair{b.t_leaf, b.o_leaf};
+  });
+}
+
+}  // namespace sc::detail

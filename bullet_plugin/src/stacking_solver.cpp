@@ -95,7 +95,7 @@ void StackingSolver::sweep(const btContactSolverInfo& info) {
       for (int f = c.m_frictionIndex; f < m_tmpSolverContactFrictionConstraintPool.size(); ++f) {
         btSolverConstraint& fr = m_tmpSolverContactFrictionConstraintPool[f];
         if (fr.m_frictionIndex != r.row) break;
-        const btScalar limit = fr.m_friction * c.m_appliedImpulse;
+        const btScalar limit = btFabs(fr.m_friction * c.m_appliedImpulse);
         solveUpperOnly(a, b, fr, r.upper_is_a, -limit, limit, info.m_sor);
       }
     }

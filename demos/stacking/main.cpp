@@ -84,7 +84,7 @@ class Demo {
       std::exit(1);
     }
     broadphase_ = std::make_unique<btDbvtBroadphase>();
-    solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+    solver_ = std::make_unique<sc::bullet::StackingSolver>();  // the mass-ratio scene stands at 60 Hz
     world_ = std::make_unique<sc::bullet::ScDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                            config_.get(), plugin.value());
     world_->setGravity(btVector3(0, -9.81f, 0));

@@ -14,7 +14,7 @@ BulletWorld::BulletWorld(bullet::ContactModel model, double gravity, double hz)
   config = std::make_unique<btDefaultCollisionConfiguration>(info);
   dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
   broadphase = std::make_unique<btDbvtBroadphase>();
-  solver = std::make_unique<btSequentialImpulseConstraintSolver>();
+  solver = std::make_unique<bullet::StackingSolver>();
   bullet::PluginSettings settings;
   settings.model = model;
   Result<std::shared_ptr<bullet::Plugin>> p = bullet::registerSmartCollision(dispatcher.get(), settings);

@@ -65,7 +65,8 @@ struct FacetPolygon {
 
 /// Runs qhull; false on any qhull error (flat or otherwise unusable input).
 bool runQhull(const std::vector<Vec3>& points, std::vector<FacetPolygon>& facets) {
-  NullSink sink;
+  // One per thread: opening /dev/null per hull cost two system calls per inner node.
+  thread_local const NullSink sink;
   if (sink.get() == nullptr) return false;
   NonStopFloatingPoint fp_guard;
   // Centred coordinates keep qhull's roundoff estimates small for far-off input.

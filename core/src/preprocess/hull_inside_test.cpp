@@ -8,6 +8,10 @@
 namespace sc::detail {
 namespace {
 
+bool boxesOverlap(const Aabb& a, const Aabb& b) {
+  return !(a.min.array() > b.max.array()).any() && !(a.max.array() < b.min.array()).any();
+}
+
 /// Normals of the outer planes: the 3 axes, 6 face and 4 body diagonals of a cube.
 const std::array<Vec3, 13>& outerDirections() {
   static const std::array<Vec3, 13> directions = [] {
@@ -87,6 +91,36 @@ bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<
         }
         reached = true;
         return false;
+      });
+  return reached;
+}
+
+bool reachesAnyInside(const SharedMesh& shared, const PatchRef& patch,
+                      std::vector<HalfspacePolytope>& polytopes, const std::vector<Aabb>& bounds,
+                      int also_skip) {
+  const MeshData& mesh = shared.mesh;
+  const std::size_t count = polytopes.size();
+  auto mayReach = [&](std::size_t i, const Aabb& box) {
+    return boxesOverlap(box, bounds[i]) && polytopes[i].boxMayReachInterior(box);
+  };
+  bool reached = false;
+  shared.tree.query(
+      [&](const Aabb& box) {
+        for (std::size_t i = 0; i < count; ++i) {
+          if (mayReach(i, box)) return true;
+        }
+        return false;
+      },
+      [&](int t) {
+        if (patch.contains(t) || t == also_skip) return true;
+        const Aabb& box = shared.tree.box(t);
+        const Tri& f = mesh.triangles[t];
+        for (std::size_t i = 0; i < count && !reached; ++i) {
+          reached = mayReach(i, box) &&
+                    polytopes[i].triangleReachesInterior(mesh.vertices[f[0]], mesh.vertices[f[1]],
+                                                         mesh.vertices[f[2]]);
+        }
+        return !reached;
       });
   return reached;
 }

@@ -33,4 +33,12 @@ std::vector<Plane> outerPlanes(const ConvexPolytope& poly);
 bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<Plane> planes,
                    const Aabb& bounds, int also_skip = -1, std::vector<Plane> outer = {});
 
+/// reachesInside for several polytopes (each in `bounds`) in one walk of the tree:
+/// true when some triangle reaches one of them. A triangle is tested against a
+/// polytope only where its own box may reach it, so the answer is the same as
+/// one reachesInside per polytope.
+bool reachesAnyInside(const SharedMesh& shared, const PatchRef& patch,
+                      std::vector<HalfspacePolytope>& polytopes, const std::vector<Aabb>& bounds,
+                      int also_skip);
+
 }  // namespace sc::detail

@@ -196,7 +196,8 @@ bool Decomposer::swallows(int t) {
   }
   if (fresh < 0) return false;
   const Vec3& v = mesh_.vertices[fresh];
-  const PatchRef patch{faces_, rank_, static_cast<int>(faces_.size())};
+  tetras_.clear();
+  tetra_bounds_.clear();
   for (std::size_t i = 0; i < verified_planes_.size(); ++i) {
     const Plane& base = verified_planes_[i];
     if (base.signedDistance(v) <= tol_) continue;
@@ -212,9 +213,12 @@ bool Decomposer::swallows(int t) {
       if (n.dot(corner[(k + 2) % 3] - p) > 0.0) n = -n;
       tetra.push_back({n, n.dot(p)});
     }
-    if (reachesInside(shared_, patch, std::move(tetra), bounds, t)) return true;
+    tetras_.emplace_back(std::move(tetra), tol_);
+    tetra_bounds_.push_back(bounds);
   }
-  return false;
+  // One walk of the tree for all of them: a vertex sees several faces of a large hull.
+  const PatchRef patch{faces_, rank_, static_cast<int>(faces_.size())};
+  return !tetras_.empty() && reachesAnyInside(shared_, patch, tetras_, tetra_bounds_, t);
 }
 
 Status Decomposer::growPatch(int seed, HullCheck mode) {

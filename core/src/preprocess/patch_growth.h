@@ -130,6 +130,9 @@ class Decomposer {
   /// Faces (corners and outward plane) of the last verified hull.
   std::vector<std::array<Vec3, 3>> verified_corners_;
   std::vector<Plane> verified_planes_;
+  /// swallows(): the tetrahedra of new hull over the verified faces a vertex sees.
+  std::vector<HalfspacePolytope> tetras_;
+  std::vector<Aabb> tetra_bounds_;
 };
 
 }  // namespace sc::detail

@@ -38,9 +38,12 @@ plot csv every ::1 using 3:(pick(sphere, 4)) with linespoints lw 2 pt 7 lc rgb "
 unset multiplot
 
 # Preprocessing alone against the triangle count (triangle_scaling --preprocess-csv):
-# time (ours wall and CPU, FCL's BVH build) and peak resident memory per process.
+# time (ours wall and CPU, FCL's BVH build) and peak resident memory per process;
+# prep_before (if readable) is an earlier run, drawn thin for comparison.
 if (!exists("prep_csv")) prep_csv = 'docs/benchmarks/triangle_scaling_preprocess.csv'
 if (!exists("prep_png")) prep_png = 'docs/benchmarks/triangle_scaling_preprocess.png'
+if (!exists("prep_before")) prep_before = 'docs/benchmarks/triangle_scaling_preprocess_2026-11-25.csv'
+before_label = "2026-11-25"
 set output prep_png
 set xlabel "triangles"
 set xrange [5000:4e6]
@@ -51,15 +54,19 @@ set key top left
 set title "Preprocessing time against the triangle count"
 set ylabel "s"
 plot prep_csv every ::1 using 3:(pick(closed, 4)) with linespoints lw 2 pt 7 lc rgb "#d62728" title "ours, closed torus, wall", \
-     prep_csv every ::1 using 3:(pick(closed, 5)) with linespoints lw 1 pt 6 dt 3 lc rgb "#d62728" title "ours, closed torus, CPU", \
+     prep_csv every ::1 using 3:(pick(closed, 5)) with linespoints lw 2 pt 6 dt 3 lc rgb "#d62728" title "ours, closed torus, CPU", \
+     prep_before every ::1 using 3:(pick(closed, 5)) with lines lw 1.5 dt 4 lc rgb "#f08080" title "closed torus, CPU, ".before_label, \
      prep_csv every ::1 using 3:(pick(soup, 4)) with linespoints lw 2 pt 5 lc rgb "#1f77b4" title "ours, soup, wall", \
-     prep_csv every ::1 using 3:(pick(soup, 5)) with linespoints lw 1 pt 4 dt 3 lc rgb "#1f77b4" title "ours, soup, CPU", \
+     prep_csv every ::1 using 3:(pick(soup, 5)) with linespoints lw 2 pt 4 dt 3 lc rgb "#1f77b4" title "ours, soup, CPU", \
+     prep_before every ::1 using 3:(pick(soup, 5)) with lines lw 1.5 dt 4 lc rgb "#6fa8dc" title "soup, CPU, ".before_label, \
      prep_csv every ::1 using 3:(pick(closed, 6)) with linespoints lw 2 pt 9 dt 2 lc rgb "#7f7f7f" title "FCL BVH build", \
-     prep_csv every ::1 using 3:(pick(cgal, 4)) with points pt 13 ps 1.5 lc rgb "#2ca02c" title "ours, bunny00, wall"
+     prep_csv every ::1 using 3:(pick(cgal, 5)) with points pt 13 ps 1.5 lc rgb "#2ca02c" title "ours, bunny00, CPU"
 set title "Peak resident memory of the process (MB)"
 set ylabel "MB"
 plot prep_csv every ::1 using 3:(pick(closed, 8) / 1024) with linespoints lw 2 pt 7 lc rgb "#d62728" title "closed torus", \
+     prep_before every ::1 using 3:(pick(closed, 8) / 1024) with lines lw 1.5 dt 4 lc rgb "#f08080" title "closed torus, ".before_label, \
      prep_csv every ::1 using 3:(pick(soup, 8) / 1024) with linespoints lw 2 pt 5 lc rgb "#1f77b4" title "soup", \
+     prep_before every ::1 using 3:(pick(soup, 8) / 1024) with lines lw 1.5 dt 4 lc rgb "#6fa8dc" title "soup, ".before_label, \
      prep_csv every ::1 using 3:(pick(soup, 3) / 1024) with lines lw 1 dt 2 lc rgb "#000000" title "1 KB per triangle", \
      prep_csv every ::1 using 3:(pick(cgal, 8) / 1024) with points pt 13 ps 1.5 lc rgb "#2ca02c" title "bunny00"
 unset multiplot

@@ -21,9 +21,11 @@ std::string pathOf(const py::object& path) {
   return p.cast<std::string>();
 }
 
-sc::PiecePtr build(sc::ModelKind kind, sc::MeshData mesh, const std::string& cache_file) {
+sc::PiecePtr build(sc::ModelKind kind, sc::MeshData mesh, const std::string& cache_file,
+                   int threads) {
   sc::BuildOptions options;
   options.cache_file = cache_file;
+  options.threads = threads;
   sc::Result<sc::PiecePtr> piece = [&] {
     py::gil_scoped_release release;
     return sc::buildPiece(kind, std::move(mesh), options);
@@ -37,14 +39,15 @@ sc::PiecePtr build(sc::ModelKind kind, sc::MeshData mesh, const std::string& cac
   return piece.value();
 }
 
-PyModel fromPieces(const py::sequence& pieces, sc::ModelKind kind, const py::object& cache_files) {
+PyModel fromPieces(const py::sequence& pieces, sc::ModelKind kind, const py::object& cache_files,
+                   int threads) {
   std::vector<sc::PiecePtr> built;
   for (size_t i = 0; i < py::len(pieces); ++i) {
     const py::sequence vf = pieces[i].cast<py::sequence>();
     if (py::len(vf) != 2) fail(sc::ErrorCode::InvalidArgument, "a piece is (vertices, triangles)");
     const std::string cache =
         cache_files.is_none() ? std::string() : pathOf(cache_files[py::int_(i)]);
-    built.push_back(build(kind, meshFrom(vf[0], vf[1]), cache));
+    built.push_back(build(kind, meshFrom(vf[0], vf[1]), cache, threads));
   }
   return {std::make_shared<const sc::Model>(kind, std::move(built))};
 }
@@ -103,26 +106,31 @@ void bindModel(py::module_& m) {
 Immutable once built; one model may be used by any number of trackers and
 scenes, on any thread. Preprocessing runs without the GIL.)")
       .def(py::init([](const ArrayArg& vertices, const ArrayArg& triangles, sc::ModelKind kind,
-                       const py::object& cache_file) {
+                       const py::object& cache_file, int threads) {
              const std::string cache = pathOf(cache_file);
-             std::vector<sc::PiecePtr> pieces{build(kind, meshFrom(vertices, triangles), cache)};
+             std::vector<sc::PiecePtr> pieces{
+                 build(kind, meshFrom(vertices, triangles), cache, threads)};
              return PyModel{std::make_shared<const sc::Model>(kind, std::move(pieces))};
            }),
            py::arg("vertices"), py::arg("triangles"),
            py::arg("kind") = sc::ModelKind::ClosedPolyhedron, py::arg("cache_file") = py::none(),
+           py::arg("threads") = 0,
            R"(Builds a one-piece model.
 
 vertices: float array (n, 3). triangles: integer array (m, 3) of vertex indices,
 counter-clockwise seen from outside. A CLOSED_POLYHEDRON must be closed, oriented
 and one shell (inside out is flipped); a TRIANGLE_SOUP takes any finite triangles.
 cache_file: path of a preprocessing cache, loaded when valid, else written.
-Raises InvalidArgumentError (shape, non-finite, bad index), InvalidGeometryError
+threads: threads of the preprocessing, 0 = one per hardware thread; the model
+(and its cache file) is the same for every count.
+Raises InvalidArgumentError (shape, non-finite, bad index, threads outside
+[0, 256]), InvalidGeometryError
 (closed rules); warns CacheFileWarning when the cache could not be written.)")
       .def_static("from_pieces", &fromPieces, py::arg("pieces"),
                   py::arg("kind") = sc::ModelKind::ClosedPolyhedron,
-                  py::arg("cache_files") = py::none(),
+                  py::arg("cache_files") = py::none(), py::arg("threads") = 0,
                   "Builds a model of several pieces, each a (vertices, triangles) pair;\n"
-                  "cache_files, if given, holds one path per piece.")
+                  "cache_files, if given, holds one path per piece; threads as for Model().")
       .def_property_readonly(
           "kind", [](const PyModel& s) { return s.model->kind(); },
           "CLOSED_POLYHEDRON or TRIANGLE_SOUP.")

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import smartcollision as sc
-from conftest import box
+from conftest import box, torus
 
 
 def test_hierarchy():
@@ -162,3 +162,16 @@ def test_cache_file(tmp_path):
         sc.Model(v, f, cache_file=3)
     pieces = sc.Model.from_pieces([(v, f), (v + 3, f)], cache_files=[path, tmp_path / "second.sccache"])
     assert pieces.piece_count == 2 and pieces.stats(0).from_cache and not pieces.stats(1).from_cache
+
+
+def test_build_threads(tmp_path):
+    # A non-convex torus: the cache file is the same bytes on one and two threads.
+    v, f = torus(around=48, tube=24)
+    files = [tmp_path / "one.sccache", tmp_path / "two.sccache"]
+    models = [sc.Model(v, f, cache_file=files[i], threads=i + 1) for i in range(2)]
+    assert models[0].stats().patches == models[1].stats().patches > 1
+    assert files[0].read_bytes() == files[1].read_bytes()
+    assert sc.Model.from_pieces([(v, f)], threads=2).stats().patches == models[0].stats().patches
+    for bad in (-1, 257):
+        with pytest.raises(sc.InvalidArgumentError, match="threads"):
+            sc.Model(v, f, threads=bad)

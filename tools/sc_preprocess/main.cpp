@@ -3,7 +3,7 @@
 // other formats through assimp) into a SmartCollision cache file and prints the
 // decomposition's statistics.
 //
-//   sc-preprocess MESH [-o CACHE] [--soup]
+//   sc-preprocess MESH [-o CACHE] [--soup] [--threads N]
 //
 // All meshes of the file are merged into one piece (node transforms applied,
 // coincident positions welded). Exit codes: 0 ok, 1 bad input or geometry (or the
@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -36,14 +37,26 @@ struct Options {
   std::string mesh;
   std::string cache;
   bool soup = false;
+  int threads = 0;  ///< BuildOptions::threads: 0 = one per hardware thread
 };
 
 void printUsage(std::FILE* out) {
   std::fprintf(out,
-               "usage: sc-preprocess MESH [-o CACHE] [--soup]\n"
-               "  MESH      OFF, OBJ, STL or PLY file; all its meshes make one piece\n"
-               "  -o CACHE  write (or reuse) the preprocessing cache file\n"
-               "  --soup    treat the mesh as a triangle soup (default: closed polyhedron)\n");
+               "usage: sc-preprocess MESH [-o CACHE] [--soup] [--threads N]\n"
+               "  MESH         OFF, OBJ, STL or PLY file; all its meshes make one piece\n"
+               "  -o CACHE     write (or reuse) the preprocessing cache file\n"
+               "  --soup       treat the mesh as a triangle soup (default: closed polyhedron)\n"
+               "  --threads N  build on N threads, 0 (default) = one per hardware thread;\n"
+               "               the cache file is the same for every N\n");
+}
+
+/// A whole number in [0, sc::kMaxBuildThreads], or -1.
+int parseThreads(const char* text) {
+  char* end = nullptr;
+  errno = 0;
+  const long n = std::strtol(text, &end, 10);
+  const bool whole = end != text && *end == '\0' && errno == 0;
+  return whole && n >= 0 && n <= sc::kMaxBuildThreads ? static_cast<int>(n) : -1;
 }
 
 /// False on a usage error (message printed).
@@ -61,6 +74,13 @@ bool parseArguments(int argc, char** argv, Options& options) {
       options.cache = argv[++i];
     } else if (arg == "--soup") {
       options.soup = true;
+    } else if (arg == "--threads") {
+      options.threads = i + 1 < argc ? parseThreads(argv[++i]) : -1;
+      if (options.threads < 0) {
+        std::fprintf(stderr, "sc-preprocess: --threads needs a whole number from 0 to %d\n",
+                     sc::kMaxBuildThreads);
+        return false;
+      }
     } else if (!arg.empty() && arg[0] == '-') {
       std::fprintf(stderr, "sc-preprocess: unknown option '%s'\n", arg.c_str());
       return false;
@@ -165,6 +185,7 @@ int main(int argc, char** argv) {
   ProgressDisplay bar(::isatty(STDERR_FILENO) == 1);
   sc::BuildOptions build;
   build.cache_file = options.cache;
+  build.threads = options.threads;
   build.progress = [&bar](double fraction, const char* stage) { bar(fraction, stage); };
   build.cancel = [] { return interrupted != 0; };
   std::signal(SIGINT, onInterrupt);

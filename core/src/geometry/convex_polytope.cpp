@@ -7,28 +7,38 @@ namespace sc::detail {
 
 void ConvexPolytope::finalize() {
   const int n = static_cast<int>(vertices.size());
-  std::vector<std::vector<int>> neighbours(n);
+  // Vertex adjacency in CSR directly (two entries per face corner, then sorted and
+  // made unique per vertex): a vector per vertex cost n allocations per polytope.
+  std::vector<int> start(n + 1, 0);
+  for (const Tri& f : faces)
+    for (int k = 0; k < 3; ++k) start[f[k] + 1] += 2;
+  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<int> entries(static_cast<std::size_t>(start[n]));
+  std::vector<int> fill(start.begin(), start.end() - 1);
   for (const Tri& f : faces) {
     for (int k = 0; k < 3; ++k) {
-      neighbours[f[k]].push_back(f[(k + 1) % 3]);
-      neighbours[f[k]].push_back(f[(k + 2) % 3]);
+      entries[static_cast<std::size_t>(fill[f[k]]++)] = f[(k + 1) % 3];
+      entries[static_cast<std::size_t>(fill[f[k]]++)] = f[(k + 2) % 3];
     }
   }
   adjacency_start.assign(n + 1, 0);
-  adjacency.clear();
+  int kept = 0;
   for (int v = 0; v < n; ++v) {
-    auto& list = neighbours[v];
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    adjacency.insert(adjacency.end(), list.begin(), list.end());
-    adjacency_start[v + 1] = static_cast<int>(adjacency.size());
+    // Compacted in place: the write position never passes the read position.
+    const auto first = entries.begin() + start[v];
+    const auto end = entries.begin() + start[v + 1];
+    std::sort(first, end);
+    const auto last = std::unique(first, end);
+    for (auto it = first; it != last; ++it) entries[static_cast<std::size_t>(kept++)] = *it;
+    adjacency_start[v + 1] = kept;
   }
+  adjacency.assign(entries.begin(), entries.begin() + kept);
   vertex_face_start.assign(n + 1, 0);
   for (const Tri& f : faces)
     for (int k = 0; k < 3; ++k) ++vertex_face_start[f[k] + 1];
   for (int v = 0; v < n; ++v) vertex_face_start[v + 1] += vertex_face_start[v];
   vertex_faces.assign(static_cast<std::size_t>(vertex_face_start[n]), -1);
-  std::vector<int> fill(vertex_face_start.begin(), vertex_face_start.end() - 1);
+  fill.assign(vertex_face_start.begin(), vertex_face_start.end() - 1);
   for (int f = 0; f < static_cast<int>(faces.size()); ++f)
     for (int k = 0; k < 3; ++k) vertex_faces[static_cast<std::size_t>(fill[faces[f][k]]++)] = f;
   bounds = Aabb();

@@ -27,15 +27,19 @@ constexpr std::size_t kVertexBytes = 3 * sizeof(double) + sizeof(std::int32_t);
 constexpr std::size_t kFaceBytes = 4 * sizeof(std::int32_t);
 constexpr std::size_t kNodeBytes = 3 * sizeof(std::int32_t);
 
+/// Appends values to a buffer. With a file, the buffer is written out whenever it
+/// holds kFlushBytes, and the payload's checksum is taken on the way, so a file
+/// never needs a buffer of its whole size.
 class Writer {
  public:
-  explicit Writer(std::vector<std::uint8_t>& out) : out_(out) {}
+  Writer(std::vector<std::uint8_t>& out, std::FILE* file) : out_(out), file_(file) {}
   template <class T>
   void put(T value) {
     static_assert(std::is_trivially_copyable_v<T>);
     const std::size_t at = out_.size();
     out_.resize(at + sizeof(T));
     std::memcpy(out_.data() + at, &value, sizeof(T));
+    if (file_ != nullptr && out_.size() >= kFlushBytes) flush();
   }
   void putCount(std::size_t n) { put(static_cast<std::uint64_t>(n)); }
   void putPolytope(const ConvexPolytope& p) {
@@ -50,9 +54,28 @@ class Writer {
       put(static_cast<std::int32_t>(f < p.face_source.size() ? p.face_source[f] : -1));
     }
   }
+  /// Checksums and writes what the buffer holds (file only); false on a write error.
+  bool flush() {
+    const std::size_t skip = written_ < kHeaderSize ? kHeaderSize - written_ : 0;
+    if (out_.size() > skip) checksum_ = fnv1a64(out_.data() + skip, out_.size() - skip, checksum_);
+    ok_ = ok_ && std::fwrite(out_.data(), 1, out_.size(), file_) == out_.size();
+    written_ += out_.size();
+    out_.clear();
+    return ok_;
+  }
+  /// The payload's checksum; with a file, after the last flush().
+  std::uint64_t checksum() const {
+    if (file_ != nullptr) return checksum_;
+    return fnv1a64(out_.data() + kHeaderSize, out_.size() - kHeaderSize);
+  }
 
  private:
+  static constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
   std::vector<std::uint8_t>& out_;
+  std::FILE* file_;
+  std::size_t written_ = 0;  ///< bytes already in the file
+  std::uint64_t checksum_ = kFnvOffset;
+  bool ok_ = true;
 };
 
 /// Reads from a byte range; every read is bounds-checked and sticky on failure.
@@ -297,9 +320,8 @@ std::size_t polytopeBytes(const ConvexPolytope& p) {
          p.faces.size() * 16;
 }
 
-/// Bytes of the payload encodePieceCache writes, so that the file is built in
-/// one buffer of its final size (a growing buffer and a copy took three times the
-/// file at the peak).
+/// Bytes of the payload encodePieceCache writes, for the header and so that the
+/// bytes in memory take one buffer of their final size.
 std::size_t payloadBytes(const PieceData& data) {
   std::size_t n = 1 + 4 + 3 * sizeof(std::uint64_t) + data.hierarchy.nodes.size() * 12;
   for (const ConvexPolytope& p : data.patches) n += polytopeBytes(p);
@@ -307,20 +329,15 @@ std::size_t payloadBytes(const PieceData& data) {
   return n;
 }
 
-}  // namespace
-
-std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const PieceData& data) {
-  const std::size_t payload_size = payloadBytes(data);
-  std::vector<std::uint8_t> bytes;
-  bytes.reserve(kHeaderSize + payload_size);
-  Writer w(bytes);
+/// Writes the header (checksum 0: the caller fills it in) and the payload.
+void encodeInto(Writer& w, std::uint64_t input_hash, const PieceData& data) {
   for (const char c : kMagic) w.put(c);
   w.put(kPieceCacheVersion);
   w.put(kEndianMarker);
   w.put(static_cast<std::uint32_t>(data.kind));
   w.put(std::uint32_t{0});
   w.put(input_hash);
-  w.put(static_cast<std::uint64_t>(payload_size));
+  w.put(static_cast<std::uint64_t>(payloadBytes(data)));
   w.put(std::uint64_t{0});  // the checksum, once the payload is written
   w.put(static_cast<std::uint8_t>(data.stats.convex ? 1 : 0));
   w.put(static_cast<std::int32_t>(data.stats.virtual_faces));
@@ -334,7 +351,27 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
   }
   w.putCount(data.hierarchy.hulls.size());
   for (const ConvexPolytope& p : data.hierarchy.hulls) w.putPolytope(p);
-  const std::uint64_t checksum = fnv1a64(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize);
+}
+
+/// The file's bytes into `file`, a chunk at a time; false on a write error.
+bool writePieceCache(std::FILE* file, std::uint64_t input_hash, const PieceData& data) {
+  std::vector<std::uint8_t> chunk;
+  Writer w(chunk, file);
+  encodeInto(w, input_hash, data);
+  if (!w.flush()) return false;
+  const std::uint64_t checksum = w.checksum();
+  return std::fseek(file, static_cast<long>(kHeaderSize - sizeof(checksum)), SEEK_SET) == 0 &&
+         std::fwrite(&checksum, sizeof(checksum), 1, file) == 1;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const PieceData& data) {
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(kHeaderSize + payloadBytes(data));
+  Writer w(bytes, nullptr);
+  encodeInto(w, input_hash, data);
+  const std::uint64_t checksum = w.checksum();
   std::memcpy(bytes.data() + kHeaderSize - sizeof(checksum), &checksum, sizeof(checksum));
   return bytes;
 }
@@ -402,14 +439,13 @@ bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData
 Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data) {
   if (existsAsNonRegular(path))
     return Status(ErrorCode::File, "the cache file '" + path + "' is not a regular file");
-  const std::vector<std::uint8_t> bytes = encodePieceCache(input_hash, data);
   // A name of our own beside the target, so rename() replaces it in one step.
   const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
   const std::string temporary = path + ".tmp" + std::to_string(tick);
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
   bool ok = file != nullptr;
   if (ok) {
-    ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+    ok = writePieceCache(file, input_hash, data);
     ok = std::fclose(file) == 0 && ok;
   }
   ok = ok && std::rename(temporary.c_str(), path.c_str()) == 0;

@@ -47,8 +47,9 @@ bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t inpu
 bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
                     std::string* rejected = nullptr);
 
-/// Writes the file through a temporary file renamed over `path`, so readers never
-/// see a partial file. File status when it cannot be written.
+/// Writes the file, a chunk at a time (no buffer of its size), through a temporary
+/// file renamed over `path`, so readers never see a partial file. File status when
+/// it cannot be written.
 Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data);
 
 }  // namespace sc::detail

@@ -65,7 +65,8 @@ struct FacetPolygon {
 
 /// Runs qhull; false on any qhull error (flat or otherwise unusable input).
 bool runQhull(const std::vector<Vec3>& points, std::vector<FacetPolygon>& facets) {
-  NullSink sink;
+  // One per thread: opening /dev/null per hull cost two system calls per inner node.
+  thread_local const NullSink sink;
   if (sink.get() == nullptr) return false;
   NonStopFloatingPoint fp_guard;
   // Centred coordinates keep qhull's roundoff estimates small for far-off input.
@@ -134,22 +135,28 @@ void markNonCorners(const std::vector<Vec3>& points, const FacetPolygon& poly, d
 }
 
 /// True when every edge is used once in each direction (a closed, oriented shell).
-/// Sorted packed keys, not a map: this runs on every hull the decomposition builds.
-bool isClosed(const std::vector<Tri>& faces) {
-  auto key = [](int from, int to) {
-    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32 |
-           static_cast<std::uint32_t>(to);
+/// Directed edges grouped by their first vertex (ids below `point_count`): linear
+/// in the faces for the small vertex degrees of a hull, and two allocations; this
+/// runs on every hull the decomposition and the hierarchy build.
+bool isClosed(const std::vector<Tri>& faces, std::size_t point_count) {
+  std::vector<int> start(point_count + 1, 0);
+  for (const Tri& f : faces)
+    for (int k = 0; k < 3; ++k) ++start[f[k] + 1];
+  for (std::size_t v = 0; v < point_count; ++v) start[v + 1] += start[v];
+  std::vector<int> to(static_cast<std::size_t>(start[point_count]));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const Tri& f : faces)
+    for (int k = 0; k < 3; ++k) to[static_cast<std::size_t>(fill[f[k]]++)] = f[(k + 1) % 3];
+  const auto has = [&](int from, int target, int before) {
+    return std::find(to.begin() + start[from], to.begin() + before, target) != to.begin() + before;
   };
-  std::vector<std::uint64_t> directed;
-  directed.reserve(3 * faces.size());
-  for (const Tri& f : faces) {
-    for (int k = 0; k < 3; ++k) directed.push_back(key(f[k], f[(k + 1) % 3]));
-  }
-  std::sort(directed.begin(), directed.end());
-  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end()) return false;
-  for (const std::uint64_t edge : directed) {
-    const std::uint64_t reverse = edge << 32 | edge >> 32;
-    if (!std::binary_search(directed.begin(), directed.end(), reverse)) return false;
+  for (std::size_t a = 0; a < point_count; ++a) {
+    for (int i = start[a]; i < start[a + 1]; ++i) {
+      const int b = to[static_cast<std::size_t>(i)];
+      // Each directed edge once, and its reverse present.
+      if (has(static_cast<int>(a), b, i) || !has(b, static_cast<int>(a), start[b + 1]))
+        return false;
+    }
   }
   return true;
 }
@@ -196,12 +203,12 @@ Result<ConvexPolytope> convexHull(const std::vector<Vec3>& points,
     markNonCorners(points, poly, tolerance, redundant);
   }
   std::vector<Tri> faces = triangulate(facets, redundant);
-  if (!isClosed(faces)) {
+  if (!isClosed(faces, points.size())) {
     // The facets disagreed about a nearly collinear vertex: keep them all.
     std::fill(redundant.begin(), redundant.end(), 0);
     faces = triangulate(facets, redundant);
   }
-  if (faces.size() < 4 || !isClosed(faces)) {
+  if (faces.size() < 4 || !isClosed(faces, points.size())) {
     return Status(ErrorCode::InvalidGeometry, "convexHull: qhull gave no closed hull");
   }
   // Compact to the vertices the faces use.

@@ -79,6 +79,8 @@ void buildSoupLeaves(PieceData& data) {
   for (std::size_t t = 0; t < data.mesh.triangles.size(); ++t) {
     const Tri& f = data.mesh.triangles[t];
     ConvexPolytope leaf;
+    leaf.vertices.reserve(3);  // exact: three push_backs would grow to four, in three steps
+    leaf.original.reserve(3);
     for (int k = 0; k < 3; ++k) {
       leaf.vertices.push_back(data.mesh.vertices[static_cast<std::size_t>(f[k])]);
       leaf.original.push_back(f[k]);

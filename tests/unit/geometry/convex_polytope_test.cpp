@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
+#include <vector>
 
 #include "support/shapes.h"
 #include "support/test_support.h"
@@ -80,6 +82,36 @@ TEST(ConvexPolytope, FinalizeBuildsSymmetricAdjacencyAndBounds) {
   EXPECT_VEC_NEAR(box.bounds.min, Vec3(-1, -2, -3), 0.0);
   EXPECT_VEC_NEAR(box.bounds.max, Vec3(1, 2, 3), 0.0);
   EXPECT_NEAR(box.radius, std::sqrt(14.0), 1e-12);
+}
+
+// Each vertex's neighbours are exactly the vertices it shares a face edge with,
+// sorted and once each; each vertex's faces are exactly the faces holding it.
+TEST(ConvexPolytope, FinalizeAdjacencyEqualsTheFaceEdges) {
+  test::Rng rng(77);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Vec3> points;
+    for (int i = 0; i < 10 + 15 * trial; ++i) points.push_back(test::randomDirection(rng));
+    const ConvexPolytope poly = test::hullOf(points);
+    const int n = static_cast<int>(poly.vertices.size());
+    std::vector<std::set<int>> neighbours(n), faces_of(n);
+    for (int f = 0; f < static_cast<int>(poly.faces.size()); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        neighbours[poly.faces[f][k]].insert(
+            {poly.faces[f][(k + 1) % 3], poly.faces[f][(k + 2) % 3]});
+        faces_of[poly.faces[f][k]].insert(f);
+      }
+    }
+    ASSERT_EQ(poly.adjacency_start.size(), static_cast<std::size_t>(n + 1));
+    for (int v = 0; v < n; ++v) {
+      const std::vector<int> got(poly.adjacency.begin() + poly.adjacency_start[v],
+                                 poly.adjacency.begin() + poly.adjacency_start[v + 1]);
+      EXPECT_EQ(got, std::vector<int>(neighbours[v].begin(), neighbours[v].end()));
+      const std::set<int> around(poly.vertex_faces.begin() + poly.vertex_face_start[v],
+                                 poly.vertex_faces.begin() + poly.vertex_face_start[v + 1]);
+      EXPECT_EQ(around, faces_of[v]);
+    }
+    EXPECT_EQ(poly.adjacency.size(), static_cast<std::size_t>(poly.adjacency_start[n]));
+  }
 }
 
 }  // namespace

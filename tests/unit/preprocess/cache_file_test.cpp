@@ -205,6 +205,24 @@ TEST(CacheFileMesh, RealMeshRoundTripIsExactAndAnswersTheSame) {
   }
 }
 
+// A file of several write chunks (1 MiB each) holds exactly the bytes encoded in
+// memory, checksum included, and loads.
+TEST(CacheFileMesh, FileWrittenInChunksEqualsTheEncodedBytes) {
+  const MeshData soup = test::torusMesh(1.0, 0.3, 60, 40);  // 4,800 triangles
+  TempFile file("chunks.bvh");
+  BuildOptions options;
+  options.cache_file = file.path;
+  const Result<PiecePtr> built = buildPiece(ModelKind::TriangleSoup, soup, options);
+  ASSERT_TRUE(built.ok()) << built.status().message();
+  const std::vector<std::uint8_t> bytes = readBytes(file.path);
+  EXPECT_GT(bytes.size(), std::size_t{2} << 20);
+  const std::uint64_t key = pieceInputHash(ModelKind::TriangleSoup, soup);
+  EXPECT_EQ(bytes, encodePieceCache(key, built.value()->internals()));
+  const Result<PiecePtr> loaded = buildPiece(ModelKind::TriangleSoup, soup, options);
+  ASSERT_TRUE(loaded.ok());
+  EXPECT_TRUE(loaded.value()->stats().from_cache);
+}
+
 TEST_F(CacheFile, RoundTripLoadsTheSamePreprocessing) {
   TempFile file("roundtrip.bvh");
   const Result<PiecePtr> first = starThrough(file.path);

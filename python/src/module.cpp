@@ -108,12 +108,10 @@ void bindSettings(py::module_& m) {
                        int max_iterations, sc::RotationMode rotation_mode, double force_stiffness,
                        double torque_stiffness, int threads, sc::Broadphase broadphase,
                        bool resolve_initial_intersection, bool contact_points) {
-             return S{max_distance,       tolerance,
-                      safety_coefficient, max_iterations,
-                      rotation_mode,      force_stiffness,
-                      torque_stiffness,   threads,
-                      broadphase,         resolve_initial_intersection,
-                      contact_points};
+             const sc::PairSettings pair{
+                 max_distance,  tolerance,       safety_coefficient, max_iterations,
+                 rotation_mode, force_stiffness, torque_stiffness,   resolve_initial_intersection};
+             return S{pair, threads, broadphase, contact_points};
            }),
            py::kw_only(), py::arg("max_distance") = d.max_distance,
            py::arg("tolerance") = d.tolerance, py::arg("safety_coefficient") = d.safety_coefficient,

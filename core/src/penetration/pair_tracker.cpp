@@ -9,7 +9,7 @@
 #include "penetration/proxy_tracker.h"
 #include "penetration/result_invariants.h"
 #include "query/features.h"
-#include "smartcollision/collision.h"
+#include "smartcollision/pair_tracker.h"
 
 namespace sc {
 
@@ -80,13 +80,13 @@ void toWorld(const ProxyOutcome& o, const GroupView& target, const GroupView& op
   r.contact_orientation = Quat(world_from_contact.rotation).normalized();
 }
 
-/// The settings with the tolerance raised to its floor for this pair (settings.h).
+/// The settings with the tolerance raised to its floor for this pair (pair_settings.h).
 /// A contact normal read from closest points a tolerance t apart is tilted by about
 /// (rounding of the coordinates, ~1e-15 L) / t, which moves the contact pose by that
 /// times the depth (~ the target's radius r): within t when t >= ~4e-8 sqrt(r L).
-SceneSettings effectiveSettings(const SceneSettings& settings, const GroupPairQuery& query,
+PairSettings effectiveSettings(const PairSettings& settings, const GroupPairQuery& query,
                                 const Vec3& goal_center) {
-  SceneSettings s = settings;
+  PairSettings s = settings;
   const double r = query.targetSize();
   const double floor = kMinRelativeTolerance * std::sqrt(r * (r + goal_center.norm()));
   s.tolerance = std::max(settings.tolerance, floor);
@@ -94,7 +94,7 @@ SceneSettings effectiveSettings(const SceneSettings& settings, const GroupPairQu
 }
 
 void runDirection(PairState& state, int dir, const GroupView& target, const GroupView& opponent,
-                  const SceneSettings& requested, DirectedResult& out) {
+                  const PairSettings& requested, DirectedResult& out) {
   GroupPairQuery& query = state.query[dir];
   query.bind(target, opponent);
   const Rigid goal =
@@ -102,7 +102,7 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   ProxyOutcome outcome;
   ProxyTracker& tracker = state.tracker[dir];
   const Vec3& center = target.placement.local_center;
-  const SceneSettings settings = effectiveSettings(requested, query, goal * center);
+  const PairSettings settings = effectiveSettings(requested, query, goal * center);
   tracker.update(query, goal, center, settings, outcome);
   Rigid free_pose;
   if (outcome.code == ErrorCode::InvalidInitialTransformation &&
@@ -153,7 +153,7 @@ PairTracker::PairTracker(PairTracker&&) noexcept = default;
 PairTracker& PairTracker::operator=(PairTracker&&) noexcept = default;
 
 void PairTracker::update(const GroupView& a, const GroupView& b, Directions directions,
-                         const SceneSettings& settings, DirectedResult out[2]) {
+                         const PairSettings& settings, DirectedResult out[2]) {
   out[0] = DirectedResult();
   out[1] = DirectedResult();
   state_->last[0] = state_->last[1] = detail::ProxyOutcome();

@@ -14,7 +14,7 @@
 #include "preprocess/piece_data.h"
 #include "query/gjk.h"
 #include "query/pair_cache.h"
-#include "smartcollision/collision.h"
+#include "smartcollision/group.h"
 
 namespace sc::detail {
 

@@ -189,7 +189,7 @@ void HapticScene::setTool(btRigidBody* body, const sc::bullet::ScBulletShape& sh
   // bound (docs/haptics.md) assumes a contact stops the body over several steps.
   sc::bullet::ContactSettings soft = world_->plugin().settings().contact;
   const double omega = 2.0 * kPi / (soft.contact_period_steps * physics_dt_);
-  soft.force_stiffness = double(1.0 / tool_->getInvMass()) * omega * omega;
+  soft.contact_stiffness = double(1.0 / tool_->getInvMass()) * omega * omega;
   if (!world_->plugin().setBodySettings(tool_, soft).ok()) fail("setBodySettings");
 }
 

@@ -70,7 +70,7 @@ struct DirectedResult {
 };
 
 /// One contact of a direction (extension, for multi-point consumers such as
-/// Bullet's manifolds): a leaf pair within the margin at the contact configuration,
+/// Bullet's manifolds): a leaf pair within the threshold at the contact configuration,
 /// its target point carried to the target's current pose. World coordinates.
 struct ContactPoint {
   Vec3 point_on_target = Vec3::Zero();    ///< on T at its current pose
@@ -111,12 +111,12 @@ class SC_API PairTracker {
               const PairSettings& settings, DirectedResult out[2]);
 
   /// Every contact of direction 0 or 1 of the last update: leaf pairs within
-  /// `margin` (>= 0) of each other at the reported contact configuration (the
+  /// `threshold` (>= 0) of each other at the reported contact configuration (the
   /// closest points when apart), nearest first; empty when the direction reported
   /// no Ok result. Leaf pairs still overlapping by more than half the tolerance at
   /// the contact configuration (a lagging proxy) are left out. Call it after
   /// update(), before the groups' parts change.
-  void contactPoints(int direction, double margin, std::vector<ContactPoint>& out);
+  void contactPoints(int direction, double threshold, std::vector<ContactPoint>& out);
 
   /// Drops the tracking state of direction 0 (a target) or 1 (b target).
   void forget(int direction);

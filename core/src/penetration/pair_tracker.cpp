@@ -85,7 +85,7 @@ void toWorld(const ProxyOutcome& o, const GroupView& target, const GroupView& op
 /// (rounding of the coordinates, ~1e-15 L) / t, which moves the contact pose by that
 /// times the depth (~ the target's radius r): within t when t >= ~4e-8 sqrt(r L).
 PairSettings effectiveSettings(const PairSettings& settings, const GroupPairQuery& query,
-                                const Vec3& goal_center) {
+                               const Vec3& goal_center) {
   PairSettings s = settings;
   const double r = query.targetSize();
   const double floor = kMinRelativeTolerance * std::sqrt(r * (r + goal_center.norm()));
@@ -166,20 +166,20 @@ void PairTracker::update(const GroupView& a, const GroupView& b, Directions dire
   if (directions.b_target) detail::runDirection(*state_, 1, b, a, settings, out[1]);
 }
 
-void PairTracker::contactPoints(int direction, double margin, std::vector<ContactPoint>& out) {
+void PairTracker::contactPoints(int direction, double threshold, std::vector<ContactPoint>& out) {
   out.clear();
   const int dir = direction & 1;
   detail::PairState& s = *state_;
   const detail::ProxyOutcome& o = s.last[dir];
-  if (o.code != ErrorCode::Ok || !(margin >= 0.0)) return;
+  if (o.code != ErrorCode::Ok || !(threshold >= 0.0)) return;
   // Leaves touching at the contact pose have no closest points: measure them lifted
   // off by half the tolerance along the normal. Apart, the closest pair counts even
-  // beyond the margin, so a consumer always has the point the result names.
+  // beyond the threshold, so a consumer always has the point the result names.
   const double lift = o.penetrating ? 0.5 * s.tolerance[dir] : 0.0;
   Rigid probe = o.contact_pose;
   probe.translation += lift * o.contact.normal;
-  const double threshold = std::max(margin, o.penetrating ? 0.0 : o.distance) + lift;
-  s.query[dir].contacts(probe, threshold, s.leaf_contacts);
+  const double probe_threshold = std::max(threshold, o.penetrating ? 0.0 : o.distance) + lift;
+  s.query[dir].contacts(probe, probe_threshold, s.leaf_contacts);
   for (const detail::LeafContact& c : s.leaf_contacts) {
     if (c.intersecting) continue;  // deeper than the lift: a lagging proxy; skipped
     out.push_back(detail::contactPointOf(s, dir, s.query[dir], c, lift));

@@ -822,16 +822,16 @@ struct GroupPairQuery::ToiPolicy {
   GroupPairQuery& q;
   const Vec3& delta;
   double reach_length;  ///< |delta|
-  double stop_gap;
+  double skin;
   const std::vector<LeafPair>& skip;
   double limit = 1.0;
 
   // The pair's gap shrinks by at most limit * |delta| along the way; a pair that
-  // starts within stop_gap would block at once.
+  // starts within skin would block at once.
   bool prunes(double bound) const {
-    return bound > stop_gap && bound - limit * reach_length > 0.5 * stop_gap;
+    return bound > skin && bound - limit * reach_length > 0.5 * skin;
   }
-  double reach() const { return limit * reach_length + 0.5 * stop_gap; }
+  double reach() const { return limit * reach_length + 0.5 * skin; }
   double splitWithin() const { return -1.0; }
   bool full() const { return false; }
   bool admits(const NodePair& p) {
@@ -843,10 +843,10 @@ struct GroupPairQuery::ToiPolicy {
     const double swept =
         pointSegmentDistance(os.group_from_piece * o.center, c0, c0 + limit * delta) - t.radius -
         o.radius;
-    if (swept > 0.5 * stop_gap) return false;
+    if (swept > 0.5 * skin) return false;
     return !planeKeepsApart(p);
   }
-  /// True when the hulls stay more than stop_gap apart up to `limit`, by their
+  /// True when the hulls stay more than skin apart up to `limit`, by their
   /// separating planes: along the normal n of the plane at the start they part at
   /// the rate n.delta, whatever the distance does, so it keeps them apart up to some
   /// s1; the plane at `limit` does back to some s0; s0 < s1 covers the motion. Then
@@ -863,11 +863,11 @@ struct GroupPairQuery::ToiPolicy {
     return s0 < s1;
   }
   /// How far along the motion (sign -1) or back from its end (+1) the separating
-  /// plane of `r` stays more than stop_gap open; -1 when it is not open there.
+  /// plane of `r` stays more than skin open; -1 when it is not open there.
   double openUntil(const GjkResult& r, double sign) const {
-    if (r.status != GjkStatus::Separated || r.distance <= stop_gap) return -1.0;
+    if (r.status != GjkStatus::Separated || r.distance <= skin) return -1.0;
     const double closing = sign * r.normal.dot(delta);
-    return closing <= 0.0 ? kInfinity : (r.distance - stop_gap) / closing;
+    return closing <= 0.0 ? kInfinity : (r.distance - skin) / closing;
   }
   bool visit(const NodePair& p) {
     const Slot& ts = q.t_slots_[p.t_slot];
@@ -883,34 +883,34 @@ struct GroupPairQuery::ToiPolicy {
     for (int step = 0; step < kMaxAdvanceSteps && s < limit; ++step) {
       bool beyond = false;
       const LeafContact c = q.evaluate(p, translated(start, s * delta), kInfinity, beyond);
-      if (c.intersecting || c.gap <= stop_gap) break;
+      if (c.intersecting || c.gap <= skin) break;
       const double rate = -c.normal.dot(delta);
       if (rate <= 0.0) {
         s = limit;
         break;
       }
-      s = std::min(limit, s + (c.gap - 0.5 * stop_gap) / rate);
+      s = std::min(limit, s + (c.gap - 0.5 * skin) / rate);
     }
     limit = std::min(limit, s);
     return limit > 0.0;
   }
 };
 
-double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, double stop_gap,
+double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, double skin,
                                       const std::vector<LeafPair>& skip) {
   counters_ = TraversalCounters();
   const double reach_length = delta.norm();
   const double known = knownLowerBound(o_from_t);
-  if (known > stop_gap && known - reach_length > 0.5 * stop_gap) {
+  if (known > skin && known - reach_length > 0.5 * skin) {
     counters_.shortcut = true;
     return 1.0;
   }
   placeTargets(o_from_t);
-  ToiPolicy policy{*this, delta, reach_length, stop_gap, skip};
+  ToiPolicy policy{*this, delta, reach_length, skin, skip};
   // A pair that can block starts within this reach. When contactsNear()'s pairs hold
   // every pair within it, advance only those, nearest first; a pair whose gap (less
   // the translation since) rules it out is pruned as the traversal would.
-  const double reach = std::max(stop_gap, reach_length + 0.5 * stop_gap);
+  const double reach = std::max(skin, reach_length + 0.5 * skin);
   if (!nearCovers(o_from_t, reach)) {
     traverse(policy);
     return policy.limit;

@@ -2,7 +2,8 @@
 # Fails when a core file includes a higher layer (geometry <- preprocess <- query
 # <- penetration <- scene <- api), directly or through a public header (each public
 # header belongs to a layer and includes only its own layer's and lower ones), when
-# core includes Bullet, when code outside core reaches into core/src, or when
+# core includes Bullet, when code outside core reaches into core/src, when the
+# collision plugin includes haptics (sc_haptics, haptics/), or when
 # support/ (shared by tests, demos and bench) includes one of its users' headers or
 # the Bullet plugin's. SOURCE_DIR is the tree checked (tests/layering_check_test.cmake
 # runs it on small trees with violations).
@@ -90,9 +91,11 @@ function(forbid)
 endfunction()
 forbid(core REGEX "^#include [<\"](btBullet|BulletDynamics|BulletCollision)"
        WHAT "core includes Bullet")
-forbid(bullet_plugin demos bench python support tests/conformance tests/scene tests/install
+forbid(bullet_plugin haptics demos bench python support tests/conformance tests/scene tests/install
        REGEX "^#include \"(geometry|preprocess|query|penetration|scene|api)/"
        WHAT "reaches into core internals")
+forbid(bullet_plugin REGEX "^#include [<\"]smartcollision/haptics/"
+       WHAT "the collision plugin includes haptics")
 forbid(support REGEX "^#include [<\"](\\.\\./|support/|common/|smartcollision/bullet/)"
        WHAT "support includes a user's or the plugin's header")
 if(errors)

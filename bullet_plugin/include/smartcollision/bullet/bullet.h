@@ -7,4 +7,3 @@
 #include "smartcollision/bullet/sc_bullet_shape.h"
 #include "smartcollision/bullet/sc_dynamics_world.h"
 #include "smartcollision/bullet/settings.h"
-#include "smartcollision/bullet/virtual_coupling.h"

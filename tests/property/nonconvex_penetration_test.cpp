@@ -27,11 +27,7 @@
 namespace sc {
 namespace {
 
-#if SC_TEST_SANITIZED
-constexpr int kPaths = 12;
-#else
-constexpr int kPaths = 200;
-#endif
+constexpr int kPaths = test::caseCount(200, 12);
 /// Tolerance of the meshes scaled to a largest box side of 1.
 constexpr double kTolerance = 1e-3;
 /// Path: from kStartGap before first contact to kDepth past it, in steps of kStep.

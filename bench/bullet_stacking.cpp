@@ -483,7 +483,7 @@ const char* towerFailure(const World& w, const Scene& s, double max_speed) {
 /// `seconds`; stable = standing, finite, and at rest (RMS speed < 0.05 m/s) at the end.
 SweepRun sweepRun(const ShapeSet& box, double dt, double k, double seconds) {
   sc::bullet::ContactSettings contact;
-  contact.force_stiffness = k;
+  contact.contact_stiffness = k;
   World w(Model::Potential, dt, 0.0, contact);
   const Scene s = tower(box, 10, "tower10");
   populate(w, s);

@@ -55,7 +55,7 @@ struct World {
       sc::bullet::PluginSettings settings;
       settings.model = k == Kind::Potential ? sc::bullet::ContactModel::Potential
                                                : sc::bullet::ContactModel::Manifold;
-      settings.contact.force_stiffness = stiffness;
+      settings.contact.contact_stiffness = stiffness;
       auto p = sc::bullet::registerSmartCollision(dispatcher.get(), settings);
       if (!p.ok()) {
         std::fprintf(stderr, "plugin: %s\n", p.status().message().c_str());

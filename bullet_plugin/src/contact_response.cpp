@@ -65,9 +65,9 @@ PairSpring pairSpring(const BodySide& a, const BodySide& b, const ContactSetting
   PairSpring s;
   s.mass = reducedMass(a, b);
   s.damping_ratio = c.damping_ratio;
-  s.user_stiffness = c.force_stiffness > 0.0;
+  s.user_stiffness = c.contact_stiffness > 0.0;
   s.omega = kTwoPi / (c.contact_period_steps * (dt > 0.0 ? dt : 1.0 / 60.0));
-  s.stiffness = s.user_stiffness ? c.force_stiffness : s.mass * s.omega * s.omega;
+  s.stiffness = s.user_stiffness ? c.contact_stiffness : s.mass * s.omega * s.omega;
   return s;
 }
 

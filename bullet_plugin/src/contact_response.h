@@ -75,7 +75,7 @@ struct PairSpring {
   double omega = 0.0;  ///< 2 pi / contact period [rad/s]
 };
 
-/// The spring of a pair: kT = force_stiffness when set, else m omega^2 with
+/// The spring of a pair: kT = contact_stiffness when set, else m omega^2 with
 /// omega = 2 pi / (contact_period_steps dt).
 PairSpring pairSpring(const BodySide& a, const BodySide& b, const ContactSettings& c, double dt);
 

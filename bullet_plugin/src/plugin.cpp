@@ -173,11 +173,12 @@ Status validate(const ContactSettings& c) {
   auto bad = [](const char* what) { return Status(ErrorCode::InvalidArgument, what); };
   if (!finiteAtLeast(c.contact_period_steps, 1.0)) return bad("contact_period_steps must be >= 1");
   if (!finiteAtLeast(c.damping_ratio, 0.0)) return bad("damping_ratio must be >= 0");
-  if (!finiteAtLeast(c.force_stiffness, 0.0)) return bad("force_stiffness must be >= 0");
-  if (!finiteAtLeast(c.torque_stiffness, 0.0)) return bad("torque_stiffness must be >= 0");
+  if (!finiteAtLeast(c.contact_stiffness, 0.0)) return bad("contact_stiffness must be >= 0");
+  if (!finiteAtLeast(c.contact_torque_stiffness, 0.0))
+    return bad("contact_torque_stiffness must be >= 0");
   if (!finiteAtLeast(c.friction_scale, 0.0)) return bad("friction_scale must be >= 0");
   // Bullet's solver works in single precision: dt k must stay a float.
-  if (c.force_stiffness > 1e30 || c.torque_stiffness > 1e30)
+  if (c.contact_stiffness > 1e30 || c.contact_torque_stiffness > 1e30)
     return bad("stiffness beyond single precision (> 1e30)");
   return Status();
 }
@@ -268,8 +269,8 @@ ContactSettings Plugin::pairSettings(const btCollisionObject* a, const btCollisi
   const ContactSettings& d = ib->second;
   c.contact_period_steps = std::min(c.contact_period_steps, d.contact_period_steps);
   c.damping_ratio = std::max(c.damping_ratio, d.damping_ratio);
-  c.force_stiffness = std::max(c.force_stiffness, d.force_stiffness);
-  c.torque_stiffness = std::max(c.torque_stiffness, d.torque_stiffness);
+  c.contact_stiffness = std::max(c.contact_stiffness, d.contact_stiffness);
+  c.contact_torque_stiffness = std::max(c.contact_torque_stiffness, d.contact_torque_stiffness);
   c.friction_scale = std::max(c.friction_scale, d.friction_scale);
   return c;
 }

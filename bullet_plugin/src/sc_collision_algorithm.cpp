@@ -290,9 +290,10 @@ SceneSettings pairQuerySettings(const SceneSettings& base, const ContactSettings
   const double inertia = reduced(meanMoment(sides[0]), meanMoment(sides[1]));
   if (!(m > 0.0 && inertia > 0.0)) return query;
   const double omega = kTwoPi / (contact.contact_period_steps * (dt > 0.0 ? dt : 1.0 / 60.0));
-  const bool set_t = contact.force_stiffness > 0.0, set_r = contact.torque_stiffness > 0.0;
-  query.force_stiffness = set_t ? contact.force_stiffness : set_r ? m * omega * omega : m;
-  query.torque_stiffness = set_r   ? contact.torque_stiffness
+  const bool set_t = contact.contact_stiffness > 0.0,
+             set_r = contact.contact_torque_stiffness > 0.0;
+  query.force_stiffness = set_t ? contact.contact_stiffness : set_r ? m * omega * omega : m;
+  query.torque_stiffness = set_r   ? contact.contact_torque_stiffness
                            : set_t ? inertia * omega * omega
                                    : inertia;
   return query;

@@ -7,7 +7,7 @@
 #include <mutex>
 
 #include "device.h"
-#include "smartcollision/bullet/virtual_coupling.h"
+#include "smartcollision/haptics/virtual_coupling.h"
 
 namespace sc::demo {
 
@@ -15,7 +15,7 @@ namespace {
 
 class ScriptDevice : public Device {
  public:
-  ScriptDevice(bullet::PoseScript script, const ScriptPlayback& playback)
+  ScriptDevice(haptics::PoseScript script, const ScriptPlayback& playback)
       : script_(std::move(script)), playback_(playback) {}
   const char* name() const override { return "script"; }
 
@@ -30,7 +30,7 @@ class ScriptDevice : public Device {
     const double t =
         playback_.clock ? playback_.clock() : std::chrono::duration<double>(now - start_).count();
     t_ = t;
-    const bullet::CouplingPose p = script_.sample(scriptTime(t));
+    const haptics::CouplingPose p = script_.sample(scriptTime(t));
     out = devicePose(p.position, p.orientation);
     return true;
   }
@@ -65,7 +65,7 @@ class ScriptDevice : public Device {
     return u <= d ? u : 2.0 * d - u;
   }
 
-  bullet::PoseScript script_;
+  haptics::PoseScript script_;
   ScriptPlayback playback_;
   std::chrono::steady_clock::time_point start_;
   bool started_ = false;
@@ -78,7 +78,7 @@ class ScriptDevice : public Device {
 
 std::unique_ptr<Device> makeScriptDevice(const std::string& path, std::string& error,
                                          const ScriptPlayback& playback) {
-  Result<bullet::PoseScript> script = bullet::PoseScript::load(path);
+  Result<haptics::PoseScript> script = haptics::PoseScript::load(path);
   if (!script.ok()) {
     error = script.status().message();
     return nullptr;

@@ -37,16 +37,16 @@ CouplingLoops::CouplingLoops(HapticScene& scene, std::unique_ptr<Device> device,
       physics_dt_(1.0 / physics_hz) {
   design_.physics_dt = physics_dt_;
   design_.haptic_dt = 1.0 / kHapticHz;
-  coupling_ = std::make_unique<sc::bullet::VirtualCoupling>(
-      sc::bullet::designCouplingGains(scene_.tool(), design_));
-  passivity_ = sc::bullet::checkPassivity(coupling_->gains(), design_);
+  coupling_ = std::make_unique<sc::haptics::VirtualCoupling>(
+      sc::haptics::designCouplingGains(scene_.tool(), design_));
+  passivity_ = sc::haptics::checkPassivity(coupling_->gains(), design_);
   DevicePose home;
   for (int k = 0; k < 3; ++k) home.position[k] = scene_.toolHome()[k];
   device_->setHome(home);
-  sc::bullet::CouplingPose home_pose;
+  sc::haptics::CouplingPose home_pose;
   home_pose.position = scene_.toolHome();
   device_pose_.write(wordsOf(home_pose));
-  body_state_.write(wordsOf(sc::bullet::bodyStateOf(scene_.tool())));
+  body_state_.write(wordsOf(sc::haptics::bodyStateOf(scene_.tool())));
   device_pose_.read(physics_device_);
   body_state_.read(haptic_body_);
 }
@@ -104,7 +104,7 @@ std::string CouplingLoops::json(const std::string& scene_name) const {
   r.monitor = &monitor_;
   r.tool_triangles = scene_.toolTriangles();
   r.fixed_triangles = scene_.fixedTriangles();
-  r.final_state = sc::bullet::bodyStateOf(scene_.tool());
+  r.final_state = sc::haptics::bodyStateOf(scene_.tool());
   r.final_rotation_vector = scene_.meshRotationVector(r.final_state);
   r.inserted_depth = scene_.insertedDepth(r.final_state);
   r.inside = scene_.inside(r.final_state);
@@ -130,11 +130,11 @@ void CouplingLoops::physicsLoop() {
 /// the body state handed to the haptic loop.
 void CouplingLoops::physicsStep() {
   device_pose_.read(physics_device_);  // kept as it was if the writer is mid-write
-  const sc::bullet::CouplingPose device = scene_.bodyTarget(poseOf(physics_device_.data()));
+  const sc::haptics::CouplingPose device = scene_.bodyTarget(poseOf(physics_device_.data()));
   btRigidBody& tool = scene_.tool();
   sc::bullet::ScDynamicsWorld& world = scene_.world();
   const auto t0 = Clock::now();
-  const sc::bullet::CouplingWrench w = coupling_->apply(device, tool);
+  const sc::haptics::CouplingWrench w = coupling_->apply(device, tool);
   monitor_.beforeStep(*coupling_, device, tool, w);
   world.stepSimulation(btScalar(physics_dt_), 1, btScalar(physics_dt_));
   monitor_.afterStep(tool);
@@ -144,7 +144,7 @@ void CouplingLoops::physicsStep() {
   if (step > physics_dt_) ++metrics_.steps_over_period;
   metrics_.max_depth = std::max(metrics_.max_depth.load(), world.plugin().stats().max_depth);
   metrics_.generated = monitor_.generated();
-  const sc::bullet::BodyState body = sc::bullet::bodyStateOf(tool);
+  const sc::haptics::BodyState body = sc::haptics::bodyStateOf(tool);
   recordHealth(body, w);
   StateWords state = wordsOf(body);
   state[13] = double(metrics_.physics_count.load() + 1);
@@ -154,8 +154,8 @@ void CouplingLoops::physicsStep() {
 }
 
 /// Physics thread, after each step: what a soak watches (NaN, energy, memory).
-void CouplingLoops::recordHealth(const sc::bullet::BodyState& body,
-                                 const sc::bullet::CouplingWrench& w) {
+void CouplingLoops::recordHealth(const sc::haptics::BodyState& body,
+                                 const sc::haptics::CouplingWrench& w) {
   if (!finite(body) || !finite(w)) ++metrics_.non_finite_steps;
   metrics_.max_kinetic = std::max(metrics_.max_kinetic, kineticEnergy(scene_.tool()));
   const long step = metrics_.physics_count.load() + 1;
@@ -191,14 +191,14 @@ void CouplingLoops::hapticSample(double interval) {
   if (!first) m.periods.add(interval);
   DevicePose p;
   if (device_->poll(p)) {
-    sc::bullet::CouplingPose pose;
+    sc::haptics::CouplingPose pose;
     pose.position = Vec3(p.position[0], p.position[1], p.position[2]);
     pose.orientation =
         Quat(p.orientation[0], p.orientation[1], p.orientation[2], p.orientation[3]).normalized();
     device_pose_.write(wordsOf(pose));
     body_state_.read(haptic_body_);  // kept as it was if the writer is mid-write
     const StateWords& s = haptic_body_;
-    const sc::bullet::CouplingWrench r = coupling_->reaction(scene_.bodyTarget(pose), stateOf(s));
+    const sc::haptics::CouplingWrench r = coupling_->reaction(scene_.bodyTarget(pose), stateOf(s));
     if (!finite(stateOf(s)) || !finite(r)) ++m.non_finite_samples;
     Wrench out;
     for (int k = 0; k < 3; ++k) {
@@ -238,14 +238,14 @@ void CouplingLoops::checkForceJump(const Vec3& force, double interval, double bo
     ++m.unchecked_samples;
     return;
   }
-  const sc::bullet::CouplingGains& g = coupling_->gains();
+  const sc::haptics::CouplingGains& g = coupling_->gains();
   if (impact) {
-    const double bound = sc::bullet::impactJumpBound(g, kMaxDeviceSpeed, interval, body_interval);
+    const double bound = sc::haptics::impactJumpBound(g, kMaxDeviceSpeed, interval, body_interval);
     m.max_impact_jump = std::max(m.max_impact_jump, jump);
     m.max_impact_ratio = std::max(m.max_impact_ratio, jump / bound);
     return;
   }
-  const double bound = sc::bullet::forceJumpBound(g, kMaxDeviceSpeed, interval, body_interval);
+  const double bound = sc::haptics::forceJumpBound(g, kMaxDeviceSpeed, interval, body_interval);
   m.max_jump = std::max(m.max_jump, jump);
   m.max_jump_ratio = std::max(m.max_jump_ratio, jump / bound);
 }

@@ -43,7 +43,7 @@ class CouplingLoops {
   bool running() const { return running_; }
   Device& device() { return *device_; }
   const Device& device() const { return *device_; }
-  const sc::bullet::VirtualCoupling& coupling() const { return *coupling_; }
+  const sc::haptics::VirtualCoupling& coupling() const { return *coupling_; }
   const LoopMetrics& metrics() const { return metrics_; }
   /// The latest device pose and tool state, as the loops handed them over.
   PoseWords devicePose() const;
@@ -54,7 +54,7 @@ class CouplingLoops {
  private:
   void physicsLoop();
   void physicsStep();
-  void recordHealth(const sc::bullet::BodyState& body, const sc::bullet::CouplingWrench& w);
+  void recordHealth(const sc::haptics::BodyState& body, const sc::haptics::CouplingWrench& w);
   void hapticLoop();
   void hapticSample(double interval);
   void checkForceJump(const Vec3& force, double interval, double body_interval);
@@ -62,10 +62,10 @@ class CouplingLoops {
   HapticScene& scene_;
   std::unique_ptr<Device> device_;
   double physics_hz_, physics_dt_;
-  sc::bullet::CouplingDesign design_;
-  std::unique_ptr<sc::bullet::VirtualCoupling> coupling_;
-  sc::bullet::PassivityReport passivity_;
-  sc::bullet::CouplingEnergyMonitor monitor_;  ///< physics thread
+  sc::haptics::CouplingDesign design_;
+  std::unique_ptr<sc::haptics::VirtualCoupling> coupling_;
+  sc::haptics::PassivityReport passivity_;
+  sc::haptics::CouplingEnergyMonitor monitor_;  ///< physics thread
 
   SeqLock<7> device_pose_;      ///< haptic -> physics, graphics
   SeqLock<15> body_state_;      ///< physics -> haptic, graphics

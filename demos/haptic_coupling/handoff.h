@@ -10,6 +10,7 @@
 #include <cstddef>
 
 #include "smartcollision/bullet/bullet.h"
+#include "smartcollision/haptics/virtual_coupling.h"
 
 namespace sc::demo::haptic {
 
@@ -51,19 +52,19 @@ class SeqLock {
 using PoseWords = std::array<double, 7>;    // x y z qw qx qy qz
 using StateWords = std::array<double, 15>;  // pose, v, w, physics step count, in contact
 
-inline PoseWords wordsOf(const sc::bullet::CouplingPose& p) {
+inline PoseWords wordsOf(const sc::haptics::CouplingPose& p) {
   return {p.position.x(),    p.position.y(),    p.position.z(),   p.orientation.w(),
           p.orientation.x(), p.orientation.y(), p.orientation.z()};
 }
 
-inline sc::bullet::CouplingPose poseOf(const double* w) {
-  sc::bullet::CouplingPose p;
+inline sc::haptics::CouplingPose poseOf(const double* w) {
+  sc::haptics::CouplingPose p;
   p.position = Vec3(w[0], w[1], w[2]);
   p.orientation = Quat(w[3], w[4], w[5], w[6]).normalized();
   return p;
 }
 
-inline StateWords wordsOf(const sc::bullet::BodyState& s) {
+inline StateWords wordsOf(const sc::haptics::BodyState& s) {
   StateWords w{};
   const PoseWords p = wordsOf(s.pose);
   std::copy(p.begin(), p.end(), w.begin());
@@ -74,8 +75,8 @@ inline StateWords wordsOf(const sc::bullet::BodyState& s) {
   return w;
 }
 
-inline sc::bullet::BodyState stateOf(const StateWords& w) {
-  sc::bullet::BodyState s;
+inline sc::haptics::BodyState stateOf(const StateWords& w) {
+  sc::haptics::BodyState s;
   s.pose = poseOf(w.data());
   s.linear_velocity = Vec3(w[7], w[8], w[9]);
   s.angular_velocity = Vec3(w[10], w[11], w[12]);

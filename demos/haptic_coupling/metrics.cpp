@@ -18,12 +18,12 @@ double PeriodHistogram::percentile(double p) const {
   return max_;
 }
 
-bool finite(const sc::bullet::BodyState& s) {
+bool finite(const sc::haptics::BodyState& s) {
   return s.pose.position.allFinite() && s.pose.orientation.coeffs().allFinite() &&
          s.linear_velocity.allFinite() && s.angular_velocity.allFinite();
 }
 
-bool finite(const sc::bullet::CouplingWrench& w) {
+bool finite(const sc::haptics::CouplingWrench& w) {
   return w.force.allFinite() && w.torque.allFinite();
 }
 
@@ -38,15 +38,15 @@ double kineticEnergy(const btRigidBody& b) {
 }
 
 std::string metricsJson(const LoopMetrics& m, const RunReport& r) {
-  const sc::bullet::CouplingGains& g = r.gains;
-  const sc::bullet::CouplingEnergyMonitor& monitor = *r.monitor;
-  const sc::bullet::BodyState& s = r.final_state;
+  const sc::haptics::CouplingGains& g = r.gains;
+  const sc::haptics::CouplingEnergyMonitor& monitor = *r.monitor;
+  const sc::haptics::BodyState& s = r.final_state;
   const Vec3& rv = r.final_rotation_vector;
   // Nominal bound: one haptic period of device motion, one physics step of the body.
   const double jump_bound =
-      sc::bullet::forceJumpBound(g, r.max_device_speed, r.haptic_dt, r.physics_dt);
+      sc::haptics::forceJumpBound(g, r.max_device_speed, r.haptic_dt, r.physics_dt);
   const double impact_bound =
-      sc::bullet::impactJumpBound(g, r.max_device_speed, r.haptic_dt, r.physics_dt);
+      sc::haptics::impactJumpBound(g, r.max_device_speed, r.haptic_dt, r.physics_dt);
   const long haptic = m.haptic_count.load(), physics = m.physics_count.load();
   char buf[4096];
   std::snprintf(

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "smartcollision/bullet/bullet.h"
+#include "smartcollision/haptics/virtual_coupling.h"
 
 namespace sc::demo::haptic {
 
@@ -36,8 +37,8 @@ class PeriodHistogram {
   double max_ = 0.0;
 };
 
-bool finite(const sc::bullet::BodyState& s);
-bool finite(const sc::bullet::CouplingWrench& w);
+bool finite(const sc::haptics::BodyState& s);
+bool finite(const sc::haptics::CouplingWrench& w);
 /// Kinetic energy of a body [J] (translation + rotation about its principal axes).
 double kineticEnergy(const btRigidBody& b);
 
@@ -78,11 +79,11 @@ struct RunReport {
   std::string scene;
   const char* device = "";
   double haptic_dt = 0.0, physics_dt = 0.0, max_device_speed = 0.0;
-  sc::bullet::CouplingGains gains;
-  sc::bullet::PassivityReport passivity;
-  const sc::bullet::CouplingEnergyMonitor* monitor = nullptr;
+  sc::haptics::CouplingGains gains;
+  sc::haptics::PassivityReport passivity;
+  const sc::haptics::CouplingEnergyMonitor* monitor = nullptr;
   std::size_t tool_triangles = 0, fixed_triangles = 0;
-  sc::bullet::BodyState final_state;
+  sc::haptics::BodyState final_state;
   Vec3 final_rotation_vector = Vec3::Zero();  ///< in the tool's mesh frame
   double inserted_depth = 0.0;
   bool inside = false;

@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "smartcollision/bullet/bullet.h"
+#include "smartcollision/haptics/virtual_coupling.h"
 
 namespace sc::demo::haptic {
 namespace {
@@ -64,7 +65,7 @@ double defaultSeconds(const Options& o) {
   const std::string file = scriptFile(o);
   double length = 0.0;
   if (!file.empty()) {
-    auto s = sc::bullet::PoseScript::load(file);
+    auto s = sc::haptics::PoseScript::load(file);
     if (s.ok()) length = s.value().duration();
   }
   return length > 0 ? length + 1.0 : 10.0;

@@ -35,7 +35,7 @@ void Renderer::collect(std::vector<DrawItem>& items) {
   items.push_back(ground(&scene_.cubeMesh()));
   items.push_back(
       drawItem(&scene_.fixedMesh(), scene_.fixed().getWorldTransform(), scene_.fixedColor(), 1.0f));
-  const sc::bullet::BodyState s = stateOf(loops_.bodyState());
+  const sc::haptics::BodyState s = stateOf(loops_.bodyState());
   const btTransform body(
       btQuaternion(btScalar(s.pose.orientation.x()), btScalar(s.pose.orientation.y()),
                    btScalar(s.pose.orientation.z()), btScalar(s.pose.orientation.w())),

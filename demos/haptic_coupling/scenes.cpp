@@ -121,24 +121,24 @@ HapticScene::~HapticScene() {
   for (auto& b : rigid_) world_->removeRigidBody(b.get());
 }
 
-sc::bullet::CouplingPose HapticScene::bodyTarget(const sc::bullet::CouplingPose& device) const {
-  sc::bullet::CouplingPose t;
+sc::haptics::CouplingPose HapticScene::bodyTarget(const sc::haptics::CouplingPose& device) const {
+  sc::haptics::CouplingPose t;
   t.position = device.position + device.orientation * grip_position_;
   t.orientation = (device.orientation * grip_rotation_).normalized();
   return t;
 }
 
-Vec3 HapticScene::meshRotationVector(const sc::bullet::BodyState& s) const {
-  return sc::bullet::rotationVector(s.pose.orientation * grip_rotation_.conjugate());
+Vec3 HapticScene::meshRotationVector(const sc::haptics::BodyState& s) const {
+  return sc::haptics::rotationVector(s.pose.orientation * grip_rotation_.conjugate());
 }
 
-double HapticScene::insertedDepth(const sc::bullet::BodyState& s) const {
+double HapticScene::insertedDepth(const sc::haptics::BodyState& s) const {
   return block_top_ - (s.pose.position.y() - tool_half_.y());
 }
 
 /// Peg: centre within the hole's clearance (+1 mm), at least 20 mm below the top.
 /// Cavity: the tool's box within the pocket's walls and below its rim.
-bool HapticScene::inside(const sc::bullet::BodyState& s) const {
+bool HapticScene::inside(const sc::haptics::BodyState& s) const {
   const double lateral = std::max(std::abs(s.pose.position.x()), std::abs(s.pose.position.z()));
   if (cavity_)
     return lateral + std::max(tool_half_.x(), tool_half_.z()) <= hole_half_ + 0.002 &&
@@ -189,7 +189,7 @@ void HapticScene::setTool(btRigidBody* body, const sc::bullet::ScBulletShape& sh
   // bound (docs/haptics.md) assumes a contact stops the body over several steps.
   sc::bullet::ContactSettings soft = world_->plugin().settings().contact;
   const double omega = 2.0 * kPi / (soft.contact_period_steps * physics_dt_);
-  soft.force_stiffness = double(1.0 / tool_->getInvMass()) * omega * omega;
+  soft.contact_stiffness = double(1.0 / tool_->getInvMass()) * omega * omega;
   if (!world_->plugin().setBodySettings(tool_, soft).ok()) fail("setBodySettings");
 }
 

@@ -13,6 +13,7 @@
 
 #include "../common/viewer.h"
 #include "smartcollision/bullet/bullet.h"
+#include "smartcollision/haptics/virtual_coupling.h"
 
 namespace sc::demo::haptic {
 
@@ -33,13 +34,13 @@ class HapticScene {
   /// The tool's mesh frame at the start.
   const Vec3& toolHome() const { return tool_home_; }
   /// The body's pose that holds the tool's mesh frame at the device's pose.
-  sc::bullet::CouplingPose bodyTarget(const sc::bullet::CouplingPose& device) const;
+  sc::haptics::CouplingPose bodyTarget(const sc::haptics::CouplingPose& device) const;
   /// The tool's rotation vector in its mesh frame.
-  Vec3 meshRotationVector(const sc::bullet::BodyState& s) const;
+  Vec3 meshRotationVector(const sc::haptics::BodyState& s) const;
   /// How far the tool's lowest point is below the top of the block [m].
-  double insertedDepth(const sc::bullet::BodyState& s) const;
+  double insertedDepth(const sc::haptics::BodyState& s) const;
   /// Whether the task is done: the tool in the hole or the pocket.
-  bool inside(const sc::bullet::BodyState& s) const;
+  bool inside(const sc::haptics::BodyState& s) const;
 
   std::size_t toolTriangles() const { return tool_triangles_; }
   std::size_t fixedTriangles() const { return fixed_triangles_; }

@@ -36,6 +36,15 @@ class Status(enum.IntEnum):
     INVALID_OPERATION = 6
     FILE = 7
 
+class DirectionStatus(enum.IntEnum):
+    NOT_COMPUTED = 0
+    BEYOND_MAX_DISTANCE = 1
+    FIRST_SEEN_INTERSECTING = 2
+    SEPARATED = 3
+    TOUCHING = 4
+    PENETRATING = 5
+    LAGGING = 6
+
 class ModelKind(enum.IntEnum):
     CLOSED_POLYHEDRON = 0
     TRIANGLE_SOUP = 1
@@ -139,6 +148,10 @@ class Feature:
 class Result:
     @property
     def status(self) -> Status: ...
+    @property
+    def direction_status(self) -> DirectionStatus: ...
+    @property
+    def has_depth(self) -> bool: ...
     @property
     def ok(self) -> bool: ...
     @property

@@ -68,6 +68,26 @@ void bindEnums(py::module_& m) {
       .value("INVALID_ID", sc::ErrorCode::InvalidId)
       .value("INVALID_OPERATION", sc::ErrorCode::InvalidOperation)
       .value("FILE", sc::ErrorCode::File);
+  struct Named {
+    const char* name;
+    sc::DirectionStatus value;
+    const char* doc;
+  };
+  using D = sc::DirectionStatus;
+  const Named statuses[] = {
+      {"NOT_COMPUTED", D::NotComputed,
+       "Not updated (a static or passive target) or settings out of range."},
+      {"BEYOND_MAX_DISTANCE", D::BeyondMaxDistance, "Apart by more than settings.max_distance."},
+      {"FIRST_SEEN_INTERSECTING", D::FirstSeenIntersecting,
+       "Intersecting with no free pose known yet."},
+      {"SEPARATED", D::Separated, "Apart by more than the tolerance."},
+      {"TOUCHING", D::Touching, "Apart or in contact within the tolerance; no depth."},
+      {"PENETRATING", D::Penetrating, "A depth; the contact configuration is settled."},
+      {"LAGGING", D::Lagging,
+       "A depth, but the proxy ran out of iterations on its way (catches up later)."}};
+  py::enum_<D> direction_status(m, "DirectionStatus",
+                                "What a direction's update found (Result.direction_status).");
+  for (const Named& s : statuses) direction_status.value(s.name, s.value, s.doc);
   py::enum_<sc::ModelKind>(m, "ModelKind")
       .value("CLOSED_POLYHEDRON", sc::ModelKind::ClosedPolyhedron,
              "Closed, oriented, one shell; has an inside.")
@@ -108,12 +128,10 @@ void bindSettings(py::module_& m) {
                        int max_iterations, sc::RotationMode rotation_mode, double force_stiffness,
                        double torque_stiffness, int threads, sc::Broadphase broadphase,
                        bool resolve_initial_intersection, bool contact_points) {
-             return S{max_distance,       tolerance,
-                      safety_coefficient, max_iterations,
-                      rotation_mode,      force_stiffness,
-                      torque_stiffness,   threads,
-                      broadphase,         resolve_initial_intersection,
-                      contact_points};
+             const sc::PairSettings pair{
+                 max_distance,  tolerance,       safety_coefficient, max_iterations,
+                 rotation_mode, force_stiffness, torque_stiffness,   resolve_initial_intersection};
+             return S{pair, threads, broadphase, contact_points};
            }),
            py::kw_only(), py::arg("max_distance") = d.max_distance,
            py::arg("tolerance") = d.tolerance, py::arg("safety_coefficient") = d.safety_coefficient,

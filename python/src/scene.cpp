@@ -62,6 +62,7 @@ void put(double* dst, const double* src, int k, bool ok) {
 py::dict resultArrays(const std::vector<sc::PairStatus>& pairs) {
   const size_t n = pairs.size();
   auto groups = perDirection<int>(n, 0), status = perDirection<int>(n, 0);
+  auto direction_status = perDirection<int>(n, 0);
   auto t_obj = perDirection<int>(n, 0), o_obj = perDirection<int>(n, 0);
   auto t_piece = perDirection<int>(n, 0), o_piece = perDirection<int>(n, 0);
   auto dist = perDirection<double>(n, 0);
@@ -76,6 +77,7 @@ py::dict resultArrays(const std::vector<sc::PairStatus>& pairs) {
       const auto row = static_cast<py::ssize_t>(2 * i + static_cast<size_t>(d));
       groups.mutable_data()[row] = pairs[i].groups[d];
       status.mutable_data()[row] = static_cast<int>(r.code);
+      direction_status.mutable_data()[row] = static_cast<int>(r.status);
       t_obj.mutable_data()[row] = r.target_object, o_obj.mutable_data()[row] = r.opponent_object;
       t_piece.mutable_data()[row] = r.target_piece, o_piece.mutable_data()[row] = r.opponent_piece;
       put(dist.mutable_data() + row, &r.distance, 1, ok);
@@ -89,6 +91,7 @@ py::dict resultArrays(const std::vector<sc::PairStatus>& pairs) {
   }
   py::dict out;
   out["groups"] = groups, out["status"] = status, out["distance"] = dist;
+  out["direction_status"] = direction_status;
   const char* names[7] = {"normal", "point_on_target",  "point_on_opponent",  "tpdv",
                           "rpdv",   "contact_position", "contact_orientation"};
   for (int k = 0; k < 7; ++k) out[names[k]] = vec[k];

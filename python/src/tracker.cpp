@@ -105,6 +105,12 @@ other than status are meaningful only when ok.)")
       .def_property_readonly(
           "status", field([](const R& r) { return r.code; }),
           "OK, NO_RESULT (not computed, beyond max_distance) or INVALID_INITIAL_TRANSFORMATION.")
+      .def_property_readonly(
+          "direction_status", field([](const R& r) { return r.status; }),
+          "What happened: SEPARATED, TOUCHING and PENETRATING told apart (both of the last can\n"
+          "have distance 0), LAGGING from a settled depth, and why there is no result.")
+      .def_property_readonly("has_depth", field([](const R& r) { return r.hasDepth(); }),
+                             "direction_status is PENETRATING or LAGGING: tpdv/rpdv are a depth.")
       .def_property_readonly("ok", field([](const R& r) { return r.code == sc::ErrorCode::Ok; }),
                              "status is OK: the other fields are meaningful.")
       .def_property_readonly("penetrating", field([](const R& r) { return r.penetrating(); }),

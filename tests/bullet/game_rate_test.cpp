@@ -186,7 +186,7 @@ TEST(GameRateSettings, AStiffnessOverrideIsHonouredNotClamped) {
     BulletWorld w(bullet::ContactModel::Potential, -9.81, 60.0);
     const std::vector<btRigidBody*> column = addColumn(w, {100.0});
     bullet::ContactSettings c = w.plugin->settings().contact;
-    c.force_stiffness = k[i];
+    c.contact_stiffness = k[i];
     ASSERT_TRUE(w.plugin->setBodySettings(column[0], c).ok());
     runColumn(w, column, 3.0);
     sag[i] = 0.5 * kSize - double(column[0]->getCenterOfMassPosition().y());
@@ -195,11 +195,11 @@ TEST(GameRateSettings, AStiffnessOverrideIsHonouredNotClamped) {
   EXPECT_NEAR(sag[0], 981.0 / k[0], 0.2 * 981.0 / k[0]);
   EXPECT_NEAR(sag[1], 981.0 / k[1], 2e-4);
   bullet::ContactSettings bad;
-  bad.force_stiffness = -1.0;
+  bad.contact_stiffness = -1.0;
   BulletWorld w(bullet::ContactModel::Potential, -9.81, 60.0);
   btRigidBody* b = w.addGround();
   EXPECT_EQ(w.plugin->setBodySettings(b, bad).code(), ErrorCode::InvalidArgument);
-  bad.force_stiffness = std::nan("");
+  bad.contact_stiffness = std::nan("");
   EXPECT_EQ(w.plugin->setBodySettings(b, bad).code(), ErrorCode::InvalidArgument);
 }
 

@@ -15,17 +15,17 @@
 #include <string>
 
 #include "bullet_world.h"
-#include "smartcollision/bullet/virtual_coupling.h"
+#include "smartcollision/haptics/virtual_coupling.h"
 
 namespace sc::test {
 namespace {
 
-using bullet::CouplingDesign;
-using bullet::CouplingEnergyMonitor;
-using bullet::CouplingPose;
-using bullet::CouplingWrench;
-using bullet::PoseScript;
-using bullet::VirtualCoupling;
+using haptics::CouplingDesign;
+using haptics::CouplingEnergyMonitor;
+using haptics::CouplingPose;
+using haptics::CouplingWrench;
+using haptics::PoseScript;
+using haptics::VirtualCoupling;
 
 constexpr double kHz = 1000.0;
 constexpr double kHalf = 0.05;  // box half extent [m]
@@ -40,7 +40,7 @@ struct Rig {
     body->setGravity(btVector3(0, 0, 0));
     design.physics_dt = design.haptic_dt = 1.0 / kHz;
   }
-  bullet::CouplingGains gains() const { return bullet::designCouplingGains(*body, design); }
+  haptics::CouplingGains gains() const { return haptics::designCouplingGains(*body, design); }
 
   /// One physics step driven by `coupling` towards `device`; the wrench applied.
   CouplingWrench step(const VirtualCoupling& coupling, const CouplingPose& device,
@@ -77,22 +77,22 @@ double stepOvershoot(double zeta, double* final_error) {
 
 TEST(VirtualCouplingTest, GainsPassTheSampledSpringBound) {
   Rig rig;
-  const bullet::CouplingGains g = rig.gains();
+  const haptics::CouplingGains g = rig.gains();
   EXPECT_NEAR(g.linear_stiffness, 1.0 * std::pow(2 * kPi / (20 * 1e-3), 2), 1.0);
-  const bullet::PassivityReport p = bullet::checkPassivity(g, rig.design);
+  const haptics::PassivityReport p = haptics::checkPassivity(g, rig.design);
   EXPECT_TRUE(p.body_side) << p.body_margin;
   EXPECT_FALSE(p.device_side);  // device damping unknown
   EXPECT_NEAR(p.required_device_damping, 0.5 * g.linear_stiffness * 1e-3, 1e-9);
   // A known device damping lowers the render scale until the device side passes.
   rig.design.device_damping = 2.0;
   rig.design.device_angular_damping = 0.05;
-  const bullet::CouplingGains scaled = rig.gains();
+  const haptics::CouplingGains scaled = rig.gains();
   EXPECT_LT(scaled.render_scale, 1.0);
-  EXPECT_TRUE(bullet::checkPassivity(scaled, rig.design).device_side);
+  EXPECT_TRUE(haptics::checkPassivity(scaled, rig.design).device_side);
   // Too little damping for the sample period fails the body side.
-  bullet::CouplingGains weak = g;
+  haptics::CouplingGains weak = g;
   weak.linear_damping = 0.4 * g.linear_stiffness * 1e-3;
-  EXPECT_FALSE(bullet::checkPassivity(weak, rig.design).body_side);
+  EXPECT_FALSE(haptics::checkPassivity(weak, rig.design).body_side);
 }
 
 TEST(VirtualCouplingTest, PullsFreeBodyWithoutOvershootAtCriticalDamping) {
@@ -114,10 +114,10 @@ TEST(VirtualCouplingTest, RotationConvergesWithoutOvershoot) {
   double peak = 0.0;
   for (int i = 0; i < 800; ++i) {
     rig.step(coupling, device);
-    const Vec3 r = bullet::rotationVector(bullet::bodyStateOf(*rig.body).pose.orientation);
+    const Vec3 r = haptics::rotationVector(haptics::bodyStateOf(*rig.body).pose.orientation);
     peak = std::max(peak, r.y());
   }
-  const Vec3 r = bullet::rotationVector(bullet::bodyStateOf(*rig.body).pose.orientation);
+  const Vec3 r = haptics::rotationVector(haptics::bodyStateOf(*rig.body).pose.orientation);
   EXPECT_NEAR(r.y(), angle, 1e-5);
   EXPECT_LT((peak - angle) / angle, 0.02);
 }
@@ -139,7 +139,7 @@ TEST(VirtualCouplingTest, SaturatedPullIsLimited) {
 /// with a lateral wobble; returns the monitor.
 CouplingEnergyMonitor pressAndRelease(double damping_scale, double* device_work) {
   Rig rig(0.0, true);
-  bullet::CouplingGains g = rig.gains();
+  haptics::CouplingGains g = rig.gains();
   g.linear_damping *= damping_scale;
   g.angular_damping *= damping_scale;
   const VirtualCoupling coupling(g);
@@ -199,7 +199,7 @@ TEST(VirtualCouplingTest, ForceIsContinuousWhileSliding) {
     const double x = t < 0.6 ? 0.0 : t < 1.2 ? 0.1 * (t - 0.6) : 0.06 - 0.1 * (t - 1.2);
     device.position = Vec3(x, kHalf + 0.002 - std::min(0.005 * t, 0.0023), 0.0);
     rig.step(coupling, device);
-    const Vec3 f = coupling.reaction(device, bullet::bodyStateOf(*rig.body)).force;
+    const Vec3 f = coupling.reaction(device, haptics::bodyStateOf(*rig.body)).force;
     if (!first) max_jump = std::max(max_jump, (f - previous).norm());
     max_force = std::max(max_force, f.norm());
     previous = f;
@@ -209,7 +209,7 @@ TEST(VirtualCouplingTest, ForceIsContinuousWhileSliding) {
   RecordProperty("max_force_N", std::to_string(max_force));
   EXPECT_GT(max_force, 5.0);  // it did press
   // Speeds at most 0.1 m/s, lockstep at 1 kHz (docs/haptics.md: 2 k_t v T + 0.1 max_force).
-  EXPECT_LT(max_jump, bullet::forceJumpBound(coupling.gains(), 0.1, 1.0 / kHz, 1.0 / kHz))
+  EXPECT_LT(max_jump, haptics::forceJumpBound(coupling.gains(), 0.1, 1.0 / kHz, 1.0 / kHz))
       << "max force " << max_force;
   EXPECT_GT(double(rig.body->getCenterOfMassPosition().y()),
             kHalf - 0.002);  // still above the floor
@@ -224,7 +224,7 @@ TEST(VirtualCouplingTest, ImpactJumpStaysWithinItsBound) {
   const double top = kHalf + 0.02;
   rig.body->getWorldTransform().setOrigin(btVector3(0, btScalar(top), 0));
   const VirtualCoupling coupling(rig.gains());
-  const bullet::CouplingGains& g = coupling.gains();
+  const haptics::CouplingGains& g = coupling.gains();
   CouplingPose device;
   Vec3 previous = Vec3::Zero();
   double impact_jump = 0.0, other_jump = 0.0;
@@ -236,7 +236,7 @@ TEST(VirtualCouplingTest, ImpactJumpStaysWithinItsBound) {
     // the rows stop the box at the surface, before any penetration is seen).
     if (since_contact < 0 && double(rig.body->getCenterOfMassPosition().y()) < kHalf + 5e-4)
       since_contact = 0;
-    const Vec3 f = coupling.reaction(device, bullet::bodyStateOf(*rig.body)).force;
+    const Vec3 f = coupling.reaction(device, haptics::bodyStateOf(*rig.body)).force;
     const bool impact = since_contact >= 0 && since_contact < 20;
     double& worst = impact ? impact_jump : other_jump;
     if (i > 0) worst = std::max(worst, (f - previous).norm());
@@ -246,9 +246,9 @@ TEST(VirtualCouplingTest, ImpactJumpStaysWithinItsBound) {
   RecordProperty("impact_jump_N", std::to_string(impact_jump));
   RecordProperty("other_jump_N", std::to_string(other_jump));
   ASSERT_GE(since_contact, 0) << "the box never touched the floor";
-  const double sliding = bullet::forceJumpBound(g, 0.1, 1.0 / kHz, 1.0 / kHz);
+  const double sliding = haptics::forceJumpBound(g, 0.1, 1.0 / kHz, 1.0 / kHz);
   EXPECT_GT(impact_jump, 0.5 * g.linear_damping * 0.1) << "the impact should show b_t v";
-  EXPECT_LT(impact_jump, bullet::impactJumpBound(g, 0.1, 1.0 / kHz, 1.0 / kHz));
+  EXPECT_LT(impact_jump, haptics::impactJumpBound(g, 0.1, 1.0 / kHz, 1.0 / kHz));
   EXPECT_LT(other_jump, sliding);
 }
 
@@ -262,7 +262,7 @@ TEST(VirtualCouplingTest, PoseScriptInterpolates) {
   EXPECT_EQ(s.value().samples().size(), 2u);
   const CouplingPose mid = s.value().sample(0.5);
   EXPECT_NEAR((mid.position - Vec3(0.5, 1, -1)).norm(), 0.0, 1e-12);
-  EXPECT_NEAR(bullet::rotationVector(mid.orientation).z(), kPi / 2, 1e-9);
+  EXPECT_NEAR(haptics::rotationVector(mid.orientation).z(), kPi / 2, 1e-9);
   EXPECT_NEAR((s.value().sample(-1).position).norm(), 0.0, 1e-12);
   EXPECT_NEAR((s.value().sample(5).position - Vec3(1, 2, -2)).norm(), 0.0, 1e-12);
 }

@@ -54,21 +54,37 @@ struct HelloScene {
     reverse = gids[0] != kControlledGroup;
     return true;
   }
+
+  /// List 10-1's path: apart at origin (1, 1, 1), then pressed in at (0, 0, 0.5).
+  void pressIn() {
+    const double position1[3] = {1.0, 1.0, 1.0};
+    const double position2[3] = {0.0, 0.0, 0.5};
+    moveTo(SC_POSITION_ORIGIN, position1);
+    moveTo(SC_POSITION_ORIGIN, position2);
+  }
+
+  /// The controlled direction's distance; NaN, with a failure, unless its result is Ok.
+  double controlledDistance() {
+    int index = 0;
+    bool reverse = false;
+    if (!controlledDirection(index, reverse)) return std::nan("");
+    SCint result = -1;
+    EXPECT_EQ(manager.GetStatus(SC_STATUS_RESULT, &result, index, reverse), SC_NO_ERROR);
+    EXPECT_EQ(result, SC_NO_ERROR);
+    double distance = std::nan("");
+    EXPECT_EQ(manager.GetStatus(SC_DISTANCE, &distance, index, reverse), SC_NO_ERROR);
+    return result == SC_NO_ERROR ? distance : std::nan("");
+  }
 };
 
 TEST(HelloSmartCollision, DistanceAtOneOneOneIsSqrtFourThirds) {
   HelloScene hello;
   const double position1[3] = {1.0, 1.0, 1.0};
   hello.moveTo(SC_POSITION_ORIGIN, position1);
+  EXPECT_NEAR(hello.controlledDistance(), std::sqrt(4.0 / 3.0), 1e-9);
   int index = 0;
   bool reverse = false;
   ASSERT_TRUE(hello.controlledDirection(index, reverse));
-  SCint result = -1;
-  ASSERT_EQ(hello.manager.GetStatus(SC_STATUS_RESULT, &result, index, reverse), SC_NO_ERROR);
-  ASSERT_EQ(result, SC_NO_ERROR);
-  double distance = 0.0;
-  ASSERT_EQ(hello.manager.GetStatus(SC_DISTANCE, &distance, index, reverse), SC_NO_ERROR);
-  EXPECT_NEAR(distance, std::sqrt(4.0 / 3.0), 1e-9);
   // The closest points: the controlled tetrahedron's corner {1,1,1} and the centre
   // {1/3,1/3,1/3} of the static tetrahedron's slanted face.
   double on_target[3], on_opponent[3], normal[3];
@@ -90,27 +106,13 @@ TEST(HelloSmartCollision, DistanceAtOneOneOneIsSqrtFourThirds) {
 
 TEST(HelloSmartCollision, PenetrationDepthAtHalfZIsSqrtOneTwelfth) {
   HelloScene hello;
-  const double position1[3] = {1.0, 1.0, 1.0};
-  const double position2[3] = {0.0, 0.0, 0.5};
-  hello.moveTo(SC_POSITION_ORIGIN, position1);
-  hello.moveTo(SC_POSITION_ORIGIN, position2);
-  int index = 0;
-  bool reverse = false;
-  ASSERT_TRUE(hello.controlledDirection(index, reverse));
-  SCint result = -1;
-  ASSERT_EQ(hello.manager.GetStatus(SC_STATUS_RESULT, &result, index, reverse), SC_NO_ERROR);
-  ASSERT_EQ(result, SC_NO_ERROR);
-  double distance = 0.0;
-  ASSERT_EQ(hello.manager.GetStatus(SC_DISTANCE, &distance, index, reverse), SC_NO_ERROR);
-  EXPECT_NEAR(distance, -std::sqrt(1.0 / 12.0), 1e-9);
+  hello.pressIn();
+  EXPECT_NEAR(hello.controlledDistance(), -std::sqrt(1.0 / 12.0), 1e-9);
 }
 
 TEST(HelloSmartCollision, ContactDataOfThePenetrationIsConsistent) {
   HelloScene hello;
-  const double position1[3] = {1.0, 1.0, 1.0};
-  const double position2[3] = {0.0, 0.0, 0.5};
-  hello.moveTo(SC_POSITION_ORIGIN, position1);
-  hello.moveTo(SC_POSITION_ORIGIN, position2);
+  hello.pressIn();
   int index = 0;
   bool reverse = false;
   ASSERT_TRUE(hello.controlledDirection(index, reverse));
@@ -138,10 +140,7 @@ TEST(HelloSmartCollision, ContactDataOfThePenetrationIsConsistent) {
 
 TEST(HelloSmartCollision, TargetPlacedAtContactPositionTouchesWithinTolerance) {
   HelloScene hello;
-  const double position1[3] = {1.0, 1.0, 1.0};
-  const double position2[3] = {0.0, 0.0, 0.5};
-  hello.moveTo(SC_POSITION_ORIGIN, position1);
-  hello.moveTo(SC_POSITION_ORIGIN, position2);
+  hello.pressIn();
   int index = 0;
   bool reverse = false;
   ASSERT_TRUE(hello.controlledDirection(index, reverse));
@@ -156,16 +155,7 @@ TEST(HelloSmartCollision, TargetPlacedAtContactPositionTouchesWithinTolerance) {
                            contact[2] + normal[2]};
   fresh.moveTo(SC_POSITION_WORLD_CENTER, apart);
   fresh.moveTo(SC_POSITION_WORLD_CENTER, contact);
-  int fresh_index = 0;
-  bool fresh_reverse = false;
-  ASSERT_TRUE(fresh.controlledDirection(fresh_index, fresh_reverse));
-  SCint result = -1;
-  ASSERT_EQ(fresh.manager.GetStatus(SC_STATUS_RESULT, &result, fresh_index, fresh_reverse),
-            SC_NO_ERROR);
-  ASSERT_EQ(result, SC_NO_ERROR);
-  double distance = 1.0;
-  ASSERT_EQ(fresh.manager.GetStatus(SC_DISTANCE, &distance, fresh_index, fresh_reverse),
-            SC_NO_ERROR);
+  const double distance = fresh.controlledDistance();
   const double tolerance = 0.1;  // set by List 10-1
   EXPECT_LE(std::abs(distance), tolerance);
   RecordProperty("distance_at_contact", std::to_string(distance));

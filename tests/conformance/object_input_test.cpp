@@ -12,27 +12,17 @@
 #include <utility>
 #include <vector>
 
+#include "cube.h"
 #include "sc.h"
 
 namespace {
 
+using sc_conformance::cubeVertices;
+using sc_conformance::kCubeTriangles;
+
 // List 10-1: the unit-corner tetrahedron, outward winding.
 const std::vector<double> kTetraVertices = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
 const std::vector<int> kTetraTriangles = {0, 2, 1, 1, 3, 0, 0, 3, 2, 1, 2, 3};
-const int kCubeTriangles[36] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
-                                3, 7, 6, 3, 6, 2, 0, 4, 7, 0, 7, 3, 1, 2, 6, 1, 6, 5};
-
-std::vector<double> cubeVertices(double x, double y, double z) {
-  std::vector<double> v;
-  const double corners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  for (const auto& c : corners) {
-    v.push_back(x + c[0]);
-    v.push_back(y + c[1]);
-    v.push_back(z + c[2]);
-  }
-  return v;
-}
 
 template <class Real>
 std::vector<Real> as(const std::vector<double>& v) {

@@ -12,32 +12,20 @@
 #include <utility>
 #include <vector>
 
+#include "cube.h"
 #include "sc.h"
 
 namespace {
 
-// Unit cube with lower corner at the origin, outward winding.
-const int kCubeTriangles[36] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
-                                3, 7, 6, 3, 6, 2, 0, 4, 7, 0, 7, 3, 1, 2, 6, 1, 6, 5};
+using sc_conformance::cubeVertices;
+using sc_conformance::kCubeTriangles;
+
 // List 10-1: the unit-corner tetrahedron.
 const double kTetraVertices[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
 const int kTetraTriangles[12] = {0, 2, 1, 1, 3, 0, 0, 3, 2, 1, 2, 3};
 
 const double kSqrt4Over3 = std::sqrt(4.0 / 3.0);
 const double kSqrt1Over12 = std::sqrt(1.0 / 12.0);
-
-/// Vertices of an axis-aligned cube with lower corner (x, y, z) and edge `size`.
-std::vector<double> cubeVertices(double x, double y, double z, double size) {
-  std::vector<double> v;
-  const double corners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  for (const auto& c : corners) {
-    v.push_back(x + size * c[0]);
-    v.push_back(y + size * c[1]);
-    v.push_back(z + size * c[2]);
-  }
-  return v;
-}
 
 /// A closed-polyhedra scene that owns its objects. Objects are destroyed first
 /// (declared last), so each leaves the scene on its own.

@@ -12,27 +12,17 @@
 #include <string>
 #include <vector>
 
+#include "cube.h"
 #include "sc.h"
 
 namespace {
 
-const int kCubeTriangles[36] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
-                                3, 7, 6, 3, 6, 2, 0, 4, 7, 0, 7, 3, 1, 2, 6, 1, 6, 5};
+using sc_conformance::cubeVertices;
+using sc_conformance::kCubeTriangles;
+
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
 constexpr SCenum kBogusEnum = 0x7777;
-
-std::vector<double> cubeVertices(double x, double y, double z, double size = 1.0) {
-  std::vector<double> v;
-  const double corners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  for (const auto& c : corners) {
-    v.push_back(x + size * c[0]);
-    v.push_back(y + size * c[1]);
-    v.push_back(z + size * c[2]);
-  }
-  return v;
-}
 
 std::unique_ptr<SCObject> makeCube(double x, double y, double z,
                                    SCenum type = SC_OBJECT_TYPE_CLOSED_POLYHEDRON) {

@@ -7,22 +7,13 @@
 #include <memory>
 #include <vector>
 
+#include "cube.h"
 #include "sc.h"
 
 namespace {
 
-// Unit cube with lower corner at the origin, outward winding.
-const int kCubeTriangles[36] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
-                                3, 7, 6, 3, 6, 2, 0, 4, 7, 0, 7, 3, 1, 2, 6, 1, 6, 5};
-
-std::vector<double> cubeVertices(double size) {
-  std::vector<double> v;
-  const double corners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  for (const auto& c : corners)
-    for (double x : c) v.push_back(size * x);
-  return v;
-}
+using sc_conformance::cubeVertices;
+using sc_conformance::kCubeTriangles;
 
 constexpr int kGroup = 0;
 constexpr double kBig = 2.0;    // static cube [0, 2]^3
@@ -37,7 +28,7 @@ struct DeepScene {
   SCObject small{SC_OBJECT_TYPE_CLOSED_POLYHEDRON};
 
   DeepScene() {
-    const std::vector<double> vb = cubeVertices(kBig), vs = cubeVertices(kSmall);
+    const std::vector<double> vb = cubeVertices(0, 0, 0, kBig), vs = cubeVertices(0, 0, 0, kSmall);
     EXPECT_EQ(big.AddTriangles(vb.data(), 8, kCubeTriangles, 12), SC_NO_ERROR);
     EXPECT_EQ(small.AddTriangles(vs.data(), 8, kCubeTriangles, 12), SC_NO_ERROR);
     EXPECT_EQ(manager.AddObject(1, &big), SC_NO_ERROR);

@@ -20,11 +20,7 @@
 namespace sc::test {
 namespace {
 
-#if SC_TEST_SANITIZED
-constexpr int kCases = 30;
-#else
-constexpr int kCases = 300;
-#endif
+constexpr int kCases = caseCount(300, 30);
 constexpr int kSteps = 16;
 
 ModelPtr modelOf(const MeshData& mesh) {

@@ -14,6 +14,7 @@
 #include "penetration/initial_resolution.h"
 #include "penetration/proxy_tracker.h"
 #include "penetration/result_invariants.h"
+#include "smartcollision/collision.h"
 #include "support/brute_force.h"
 #include "support/shapes.h"
 #include "support/test_support.h"

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "sc_support/off_mesh.h"
 #include "smartcollision/collision.h"
 #include "support/brute_force.h"
 #include "support/meshes.h"
@@ -56,16 +57,6 @@ std::ostream& operator<<(std::ostream& os, const PairCase& c) { return os << c.a
 
 constexpr ModelKind kClosed = ModelKind::ClosedPolyhedron;
 constexpr ModelKind kSoup = ModelKind::TriangleSoup;
-
-/// Centred and scaled to a largest box side of 1.
-MeshData unitSize(MeshData mesh) {
-  Aabb box;
-  for (const Vec3& v : mesh.vertices) box.extend(v);
-  const Vec3 centre = 0.5 * (box.min + box.max);
-  const double scale = 1.0 / (box.max - box.min).maxCoeff();
-  for (Vec3& v : mesh.vertices) v = (v - centre) * scale;
-  return mesh;
-}
 
 /// Point in a closed mesh by the parity of a ray's crossings (Möller-Trumbore).
 bool insideByParity(const MeshData& mesh, const Vec3& p) {
@@ -184,7 +175,7 @@ TEST_P(MeshDistanceFcl, DistanceEqualsFclOnRandomSeparatedPoses) {
   ASSERT_NO_FATAL_FAILURE(raw_b = test::loadTestMesh(pc.b));
   if (raw_a.triangles.size() > kMaxTriangles || raw_b.triangles.size() > kMaxTriangles)
     GTEST_SKIP() << "meshes above " << kMaxTriangles << " triangles run in the Release pass only";
-  const MeshData mesh_a = unitSize(raw_a), mesh_b = unitSize(raw_b);
+  const MeshData mesh_a = support::fitToSize(raw_a, 1.0), mesh_b = support::fitToSize(raw_b, 1.0);
   Result<PiecePtr> piece_a = buildPiece(pc.kind_a, mesh_a);
   Result<PiecePtr> piece_b = buildPiece(pc.kind_b, mesh_b);
   ASSERT_TRUE(piece_a.ok()) << pc.a << ": " << piece_a.status().message();

@@ -15,6 +15,7 @@
 
 #include "geometry/math_util.h"
 #include "penetration/result_invariants.h"
+#include "sc_support/off_mesh.h"
 #include "smartcollision/collision.h"
 #include "support/meshes.h"
 #include "support/shapes.h"
@@ -27,11 +28,7 @@
 namespace sc {
 namespace {
 
-#if SC_TEST_SANITIZED
-constexpr int kPaths = 12;
-#else
-constexpr int kPaths = 200;
-#endif
+constexpr int kPaths = test::caseCount(200, 12);
 /// Tolerance of the meshes scaled to a largest box side of 1.
 constexpr double kTolerance = 1e-3;
 /// Path: from kStartGap before first contact to kDepth past it, in steps of kStep.
@@ -47,16 +44,6 @@ struct PairCase {
   const char* target;
   const char* opponent;
 };
-
-/// Centred and scaled to a largest box side of 1.
-MeshData unitSize(MeshData mesh) {
-  Aabb box;
-  for (const Vec3& v : mesh.vertices) box.extend(v);
-  const Vec3 centre = 0.5 * (box.min + box.max);
-  const double scale = 1.0 / (box.max - box.min).maxCoeff();
-  for (Vec3& v : mesh.vertices) v = (v - centre) * scale;
-  return mesh;
-}
 
 double boundingRadius(const MeshData& mesh) {
   double r = 0.0;
@@ -90,7 +77,7 @@ const Prepared& prepared(const std::string& name) {
   slot = std::make_unique<Prepared>();
   MeshData raw = test::loadTestMesh(name);
   if (raw.triangles.empty()) return *slot;
-  slot->mesh = unitSize(std::move(raw));
+  slot->mesh = support::fitToSize(std::move(raw), 1.0);  // largest box side 1
   Result<PiecePtr> piece = buildPiece(ModelKind::ClosedPolyhedron, slot->mesh);
   EXPECT_TRUE(piece.ok()) << name << ": " << piece.status().message();
   if (!piece.ok()) return *slot;

@@ -21,11 +21,7 @@
 namespace sc::test {
 namespace {
 
-#if SC_TEST_SANITIZED
-constexpr int kCases = 30;
-#else
-constexpr int kCases = 300;
-#endif
+constexpr int kCases = caseCount(300, 30);
 constexpr double kTolerance = 1e-3;
 const double kPiValue = std::acos(-1.0);
 /// Updates at the same goal until a mode's result changes by at most 1e-12 (the proxy

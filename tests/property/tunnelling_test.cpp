@@ -18,11 +18,7 @@
 namespace sc::test {
 namespace {
 
-#if SC_TEST_SANITIZED
-constexpr int kCases = 40;
-#else
-constexpr int kCases = 400;
-#endif
+constexpr int kCases = caseCount(400, 40);
 constexpr double kWallHalfThickness = 0.01;
 constexpr double kWallHalfSize = 1.0;
 

@@ -20,26 +20,10 @@
 #include "preprocess/cache_file.h"
 #include "sc.h"
 #include "support/shapes.h"
+#include "support/temp_files.h"
 
 namespace sc::test {
 namespace {
-
-std::string tempPath(const std::string& name) {
-  const char* dir = std::getenv("TMPDIR");
-  return std::string(dir != nullptr ? dir : "/tmp") + "/sc_forged_cache_" +
-         std::to_string(::getpid()) + "_" + name;
-}
-
-std::vector<std::uint8_t> readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(bytes.data()),
-            static_cast<std::streamsize>(bytes.size()));
-}
 
 class ForgedCache : public ::testing::Test {
  protected:
@@ -83,7 +67,7 @@ class ForgedCache : public ::testing::Test {
   }
 
   MeshData mesh_ = torusMesh(1.0, 0.3, 16, 8);
-  std::string path_ = tempPath("torus.scc");
+  std::string path_ = tempPath("sc_forged_cache", "torus.scc");
   PiecePtr fresh_;
   std::uint64_t key_ = 0;
   std::vector<std::uint8_t> valid_;

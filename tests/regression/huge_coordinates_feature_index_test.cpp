@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "sc.h"
+#include "support/sc_results.h"
 #include "support/test_support.h"
 
 namespace {
@@ -44,21 +45,14 @@ TEST(HugeCoordinates, SoupNearDoubleMaxReportsFiniteOrRefuses) {
   ASSERT_EQ(scene.AddObject(2, &other), SC_NO_ERROR);
   ASSERT_EQ(scene.AddObjectToGroup(1, 1), SC_NO_ERROR);
   ASSERT_EQ(scene.UpdateStatus(), SC_NO_ERROR);
-  SCint count = 0;
-  ASSERT_EQ(scene.GetStatus(SC_STATUS_COUNT, &count), SC_NO_ERROR);
-  for (SCint i = 0; i < count; ++i) {
-    for (bool reverse : {false, true}) {
-      SCint code = -1;
-      ASSERT_EQ(scene.GetStatus(SC_STATUS_RESULT, &code, i, reverse), SC_NO_ERROR);
-      if (code != SC_NO_ERROR) continue;
-      double distance = 0.0;
-      SCint features[3] = {};
-      ASSERT_EQ(scene.GetStatus(SC_DISTANCE, &distance, i, reverse), SC_NO_ERROR);
-      ASSERT_EQ(scene.GetStatus(SC_FEATURE_ON_TARGET, features, i, reverse), SC_NO_ERROR);
-      EXPECT_TRUE(std::isfinite(distance));
-      EXPECT_GE(features[0], 0);
-    }
-  }
+  sc::test::forEachOkDirection(scene, [&](SCint i, bool reverse) {
+    double distance = 0.0;
+    SCint features[3] = {};
+    ASSERT_EQ(scene.GetStatus(SC_DISTANCE, &distance, i, reverse), SC_NO_ERROR);
+    ASSERT_EQ(scene.GetStatus(SC_FEATURE_ON_TARGET, features, i, reverse), SC_NO_ERROR);
+    EXPECT_TRUE(std::isfinite(distance));
+    EXPECT_GE(features[0], 0);
+  });
 }
 
 }  // namespace

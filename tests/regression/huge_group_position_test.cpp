@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sc.h"
+#include "support/sc_results.h"
 #include "smartcollision/scene.h"
 
 namespace {
@@ -20,22 +21,15 @@ const double kSquare[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
 const SCint kSquareTris[] = {0, 1, 2, 0, 2, 3};
 
 void expectFiniteResults(SCSceneManager& scene) {
-  SCint count = 0;
-  ASSERT_EQ(scene.GetStatus(SC_STATUS_COUNT, &count), SC_NO_ERROR);
-  for (SCint i = 0; i < count; ++i) {
-    for (bool reverse : {false, true}) {
-      SCint code = -1;
-      ASSERT_EQ(scene.GetStatus(SC_STATUS_RESULT, &code, i, reverse), SC_NO_ERROR);
-      if (code != SC_NO_ERROR) continue;
-      double distance = 0.0;
-      double tpdv[3] = {};
-      ASSERT_EQ(scene.GetStatus(SC_DISTANCE, &distance, i, reverse), SC_NO_ERROR);
-      ASSERT_EQ(scene.GetStatus(SC_TPD_VECTOR, tpdv, i, reverse), SC_NO_ERROR);
-      EXPECT_TRUE(std::isfinite(distance)) << distance;
-      EXPECT_GE(distance, 0.0);
-      for (double c : tpdv) EXPECT_TRUE(std::isfinite(c));
-    }
-  }
+  sc::test::forEachOkDirection(scene, [&](SCint i, bool reverse) {
+    double distance = 0.0;
+    double tpdv[3] = {};
+    ASSERT_EQ(scene.GetStatus(SC_DISTANCE, &distance, i, reverse), SC_NO_ERROR);
+    ASSERT_EQ(scene.GetStatus(SC_TPD_VECTOR, tpdv, i, reverse), SC_NO_ERROR);
+    EXPECT_TRUE(std::isfinite(distance)) << distance;
+    EXPECT_GE(distance, 0.0);
+    for (double c : tpdv) EXPECT_TRUE(std::isfinite(c));
+  });
 }
 
 TEST(HugeGroupPosition, PositionsBeyondTheCoordinateLimitAreRefusedAndChangeNothing) {

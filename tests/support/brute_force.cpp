@@ -63,6 +63,12 @@ double pointSurfaceDistance(const MeshData& mesh, const Vec3& p) {
   return best;
 }
 
+double supportValue(const detail::ConvexPolytope& poly, const Vec3& d) {
+  double best = -kInfinity;
+  for (const Vec3& p : poly.vertices) best = std::max(best, p.dot(d));
+  return best;
+}
+
 bool pointInConvexPolytope(const detail::ConvexPolytope& poly, const Vec3& p, double tolerance) {
   for (const Tri& t : poly.faces) {
     const Vec3& a = poly.vertices[t[0]];

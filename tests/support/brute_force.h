@@ -26,6 +26,9 @@ SurfaceDistance meshSurfaceDistance(const MeshData& a, const Rigid& frame_from_a
 /// Distance from p (mesh frame) to the nearest triangle of the mesh.
 double pointSurfaceDistance(const MeshData& mesh, const Vec3& p);
 
+/// Largest d . x over the polytope's vertices, each one tried.
+double supportValue(const detail::ConvexPolytope& poly, const Vec3& d);
+
 /// True when p (polytope frame) is inside every face plane, within `tolerance`.
 bool pointInConvexPolytope(const detail::ConvexPolytope& poly, const Vec3& p, double tolerance);
 

@@ -20,6 +20,10 @@ inline double uniform(Rng& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
 }
 
+/// A property test's number of cases: `full`, or `sanitized` in the sanitizer builds
+/// (which run an order of magnitude slower).
+constexpr int caseCount(int full, int sanitized) { return SC_TEST_SANITIZED ? sanitized : full; }
+
 /// Uniformly distributed unit quaternion (Shoemake).
 Quat randomRotation(Rng& rng);
 /// Unit vector uniform on the sphere.

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "smartcollision/mesh.h"
 #include "smartcollision/types.h"
 
 namespace sc {
@@ -16,12 +17,6 @@ namespace sc {
 namespace detail {
 struct PieceData;
 }
-
-/// An indexed triangle set. Indices count from 0.
-struct MeshData {
-  std::vector<Vec3> vertices;
-  std::vector<Tri> triangles;
-};
 
 /// What preprocessing made of a piece.
 struct PieceStats {
@@ -36,14 +31,6 @@ struct PieceStats {
   bool from_cache = false;  ///< loaded from the cache file
   double seconds = 0.0;     ///< wall time of preprocessing
 };
-
-/// Extents a piece may have: the largest side of the box of the vertices its
-/// triangles use lies in [kMinPieceExtent, kMaxPieceExtent] (or is 0: a soup that
-/// is one point). Within it every internal threshold is relative to the models'
-/// size, so results have the same relative accuracy at every scale (docs/api.md,
-/// "Scale"); beyond it products of coordinates under- or overflow.
-inline constexpr double kMinPieceExtent = 1e-9;
-inline constexpr double kMaxPieceExtent = 1e9;
 
 /// Called during preprocessing with a fraction in [0, 1] and the stage's name.
 using ProgressCallback = std::function<void(double fraction, const char* stage)>;

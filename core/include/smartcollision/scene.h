@@ -29,7 +29,7 @@ struct PairStatus {
   int groups[2] = {kStaticGroup, kStaticGroup};
   DirectedResult results[2];
   /// With SceneSettings::contact_points: PairTracker::contactPoints of each direction
-  /// (margin = the tolerance); empty otherwise.
+  /// (threshold = the tolerance); empty otherwise.
   std::vector<ContactPoint> contacts[2];
 };
 

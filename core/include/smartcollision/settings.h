@@ -1,22 +1,13 @@
 // SPDX-License-Identifier: MIT
-// Every tunable of a scene, its default, unit and meaning, in one place.
+// Every tunable of a scene, its default, unit and meaning, in one place: the pair
+// settings each pair's update receives (pair_settings.h), and how the scene finds
+// and runs its pairs.
 #pragma once
 
-#include "smartcollision/types.h"
+#include "smartcollision/pair_settings.h"
 
 namespace sc {
 
-/// Default of SceneSettings::tolerance (model units).
-inline constexpr double kDefaultTolerance = 1e-3;
-/// Floor of the tolerance: a pair's tolerance is raised to kMinRelativeTolerance x
-/// sqrt(r (r + d)), r the target's radius and d its centre's distance from the
-/// opponent's origin; below it, rounding of the coordinates tilts contact normals
-/// enough to move the contact configuration by more than the tolerance.
-inline constexpr double kMinRelativeTolerance = 1e-7;
-/// Default of SceneSettings::safety_coefficient; the manual says not to change it.
-inline constexpr double kDefaultSafetyCoefficient = 0.49;
-/// Default of SceneSettings::max_iterations.
-inline constexpr int kDefaultMaxIterations = 30;
 /// Largest SceneSettings::threads accepted; 0 (automatic) uses at most kMaxAutoThreads.
 inline constexpr int kMaxThreads = 256;
 inline constexpr int kMaxAutoThreads = 8;
@@ -26,38 +17,21 @@ inline constexpr int kMaxAutoThreads = 8;
 /// baseline for benchmarks).
 enum class Broadphase { Tree, BruteForce };
 
-struct SceneSettings {
-  /// Pairs whose distance exceeds this report NoResult (model units; +inf = all pairs).
-  double max_distance = kInfinity;
-  /// Accuracy of the dynamic penetration depth: the contact configuration penetrates
-  /// by at most about this and lies within about this of touching (model units, > 0;
-  /// an absolute length, raised per pair to its floor kMinRelativeTolerance).
-  double tolerance = kDefaultTolerance;
-  /// Fraction of the tolerance a rotational step of the proxy may move a point (0, 1).
-  double safety_coefficient = kDefaultSafetyCoefficient;
-  /// Proxy iterations per update and direction (>= 1).
-  int max_iterations = kDefaultMaxIterations;
-  RotationMode rotation_mode = RotationMode::Input;
-  /// kT of manual (5-3) and (5-5), used by RotationMode::Mix (force per model unit, > 0).
-  double force_stiffness = 1.0;
-  /// kR of manual (5-4) and (5-5), used by RotationMode::Mix (torque per radian, > 0).
-  double torque_stiffness = 1.0;
+/// The pair settings (passed as they are to every pair's update) and the scene's own.
+struct SceneSettings : PairSettings {
   /// Threads evaluating the listed pairs, the caller's included (0 = automatic: the
   /// hardware's, at most kMaxAutoThreads; 1 = serial). Results are the same, bit for
   /// bit and in the same order, for any count.
   int threads = 0;
   Broadphase broadphase = Broadphase::Tree;
-  /// A direction first seen intersecting starts from a nearby free pose found by EPA
-  /// on its intersecting convex leaves (and reports that depth) instead of reporting
-  /// InvalidInitialTransformation. Off by default, as in the manual.
-  bool resolve_initial_intersection = false;
   /// The scene also lists every contact within the tolerance of each result
   /// (PairStatus::contacts), for multi-point consumers. Off by default: it costs a
   /// second traversal per direction.
   bool contact_points = false;
 };
 
-/// Ok, or InvalidArgument naming the first field out of range.
+/// Ok, or InvalidArgument naming the first field out of range (the pair settings'
+/// first, then the scene's).
 SC_API Status validate(const SceneSettings& settings);
 
 }  // namespace sc

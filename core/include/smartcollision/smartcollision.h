@@ -3,7 +3,11 @@
 #pragma once
 
 #include "smartcollision/collision.h"
+#include "smartcollision/group.h"
+#include "smartcollision/mesh.h"
 #include "smartcollision/model.h"
+#include "smartcollision/pair_settings.h"
+#include "smartcollision/pair_tracker.h"
 #include "smartcollision/placement.h"
 #include "smartcollision/scene.h"
 #include "smartcollision/settings.h"

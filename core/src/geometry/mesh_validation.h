@@ -4,7 +4,7 @@
 #pragma once
 
 #include "geometry/math_util.h"
-#include "smartcollision/model.h"
+#include "smartcollision/mesh.h"
 
 namespace sc::detail {
 

@@ -6,7 +6,7 @@
 #include <array>
 #include <vector>
 
-#include "smartcollision/model.h"
+#include "smartcollision/mesh.h"
 
 namespace sc::detail {
 

@@ -24,14 +24,14 @@ struct TwistMotion {
 };
 
 /// Largest s in [0, 1] such that along the motion every leaf pair not in `skip`
-/// (sorted) keeps a gap >= stop_gap / 2; when a pair blocks, it ends at a gap <=
-/// stop_gap. Pairs intersecting at s = 0 are ignored (nothing to advance from); a
-/// pair within stop_gap at s = 0 blocks at once unless the motion opens it.
+/// (sorted) keeps a gap >= skin / 2; when a pair blocks, it ends at a gap <=
+/// skin. Pairs intersecting at s = 0 are ignored (nothing to advance from); a
+/// pair within skin at s = 0 blocks at once unless the motion opens it.
 /// Per pair: the gap along the last separating normal n shrinks at most at rate
 /// max(0, -n . dc) + |dtheta| rho, rho bounding the leaf's distance to the centre.
 /// `scratch` is reused between calls. The candidates come from the query's near
 /// pairs (contactsNear with `near_margin`), kept while they cover the motion's reach.
-double advance(GroupPairQuery& query, const TwistMotion& motion, double stop_gap,
+double advance(GroupPairQuery& query, const TwistMotion& motion, double skin,
                const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch,
                double near_margin);
 

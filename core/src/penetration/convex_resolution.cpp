@@ -45,7 +45,7 @@ bool isConvexPair(const GroupPairQuery& query, const GroupView& target, const Gr
 }
 
 bool resolveConvexPair(const GroupPairQuery& query, const GroupView& target,
-                       const GroupView& opponent, const Rigid& goal, const SceneSettings& settings,
+                       const GroupView& opponent, const Rigid& goal, const PairSettings& settings,
                        ConvexPairCache& cache, ProxyOutcome& out, Rigid& free_pose) {
   const RotationMode mode = settings.rotation_mode;
   if (mode != RotationMode::Input && mode != RotationMode::None) return false;

@@ -20,7 +20,7 @@ bool isConvexPair(const GroupPairQuery& query, const GroupView& target, const Gr
 /// @return false (nothing written) for any other pair or mode, or when the pair is
 ///   apart or only touches at `goal`: the general path handles those.
 bool resolveConvexPair(const GroupPairQuery& query, const GroupView& target,
-                       const GroupView& opponent, const Rigid& goal, const SceneSettings& settings,
+                       const GroupView& opponent, const Rigid& goal, const PairSettings& settings,
                        ConvexPairCache& cache, ProxyOutcome& out, Rigid& free_pose);
 
 }  // namespace sc::detail

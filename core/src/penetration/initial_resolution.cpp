@@ -48,7 +48,7 @@ Vec3 smallestExit(const ResolutionScratch& s) {
 }  // namespace
 
 bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
-                                const SceneSettings& settings, Rigid& free_pose,
+                                const PairSettings& settings, Rigid& free_pose,
                                 ResolutionScratch& scratch, int max_rounds) {
   // The exit keeps a gap of half the tolerance, so the proxy starts clearly free.
   const double skin = 0.5 * settings.tolerance;

@@ -7,7 +7,7 @@
 
 #include "query/convex_pair.h"
 #include "query/group_pair_query.h"
-#include "smartcollision/settings.h"
+#include "smartcollision/pair_settings.h"
 
 namespace sc::detail {
 
@@ -27,7 +27,7 @@ struct ResolutionScratch {
 /// @return true with `free_pose` = goal translated by t, a pose where no leaf pair
 ///   intersects; false when no free pose was found within `max_rounds`.
 bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
-                                const SceneSettings& settings, Rigid& free_pose,
+                                const PairSettings& settings, Rigid& free_pose,
                                 ResolutionScratch& scratch, int max_rounds = 32);
 
 }  // namespace sc::detail

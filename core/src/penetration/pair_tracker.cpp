@@ -10,7 +10,7 @@
 #include "penetration/proxy_tracker.h"
 #include "penetration/result_invariants.h"
 #include "query/features.h"
-#include "smartcollision/collision.h"
+#include "smartcollision/pair_tracker.h"
 
 namespace sc {
 
@@ -82,13 +82,13 @@ void toWorld(const ProxyOutcome& o, const GroupView& target, const GroupView& op
   r.contact_orientation = Quat(world_from_contact.rotation).normalized();
 }
 
-/// The settings with the tolerance raised to its floor for this pair (settings.h).
+/// The settings with the tolerance raised to its floor for this pair (pair_settings.h).
 /// A contact normal read from closest points a tolerance t apart is tilted by about
 /// (rounding of the coordinates, ~1e-15 L) / t, which moves the contact pose by that
 /// times the depth (~ the target's radius r): within t when t >= ~4e-8 sqrt(r L).
-SceneSettings effectiveSettings(const SceneSettings& settings, const GroupPairQuery& query,
-                                const Vec3& goal_center) {
-  SceneSettings s = settings;
+PairSettings effectiveSettings(const PairSettings& settings, const GroupPairQuery& query,
+                               const Vec3& goal_center) {
+  PairSettings s = settings;
   const double r = query.targetSize();
   const double floor = kMinRelativeTolerance * std::sqrt(r * (r + goal_center.norm()));
   s.tolerance = std::max(settings.tolerance, floor);
@@ -96,7 +96,7 @@ SceneSettings effectiveSettings(const SceneSettings& settings, const GroupPairQu
 }
 
 void runDirection(PairState& state, int dir, const GroupView& target, const GroupView& opponent,
-                  const SceneSettings& requested, DirectedResult& out) {
+                  const PairSettings& requested, DirectedResult& out) {
   GroupPairQuery& query = state.query[dir];
   query.bind(target, opponent);
   const Rigid goal =
@@ -104,7 +104,7 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   ProxyOutcome outcome;
   ProxyTracker& tracker = state.tracker[dir];
   const Vec3& center = target.placement.local_center;
-  const SceneSettings settings = effectiveSettings(requested, query, goal * center);
+  const PairSettings settings = effectiveSettings(requested, query, goal * center);
   Rigid free_pose;
   if (!tracker.tracking() && settings.resolve_initial_intersection &&
       resolveConvexPair(query, target, opponent, goal, settings, state.convex[dir], outcome,
@@ -161,7 +161,7 @@ PairTracker::PairTracker(PairTracker&&) noexcept = default;
 PairTracker& PairTracker::operator=(PairTracker&&) noexcept = default;
 
 void PairTracker::update(const GroupView& a, const GroupView& b, Directions directions,
-                         const SceneSettings& settings, DirectedResult out[2]) {
+                         const PairSettings& settings, DirectedResult out[2]) {
   out[0] = DirectedResult();
   out[1] = DirectedResult();
   state_->last[0] = state_->last[1] = detail::ProxyOutcome();
@@ -174,20 +174,20 @@ void PairTracker::update(const GroupView& a, const GroupView& b, Directions dire
   if (directions.b_target) detail::runDirection(*state_, 1, b, a, settings, out[1]);
 }
 
-void PairTracker::contactPoints(int direction, double margin, std::vector<ContactPoint>& out) {
+void PairTracker::contactPoints(int direction, double threshold, std::vector<ContactPoint>& out) {
   out.clear();
   const int dir = direction & 1;
   detail::PairState& s = *state_;
   const detail::ProxyOutcome& o = s.last[dir];
-  if (o.code != ErrorCode::Ok || !(margin >= 0.0)) return;
+  if (o.code != ErrorCode::Ok || !(threshold >= 0.0)) return;
   // Leaves touching at the contact pose have no closest points: measure them lifted
   // off by half the tolerance along the normal. Apart, the closest pair counts even
-  // beyond the margin, so a consumer always has the point the result names.
+  // beyond the threshold, so a consumer always has the point the result names.
   const double lift = o.penetrating ? 0.5 * s.tolerance[dir] : 0.0;
   Rigid probe = o.contact_pose;
   probe.translation += lift * o.contact.normal;
-  const double threshold = std::max(margin, o.penetrating ? 0.0 : o.distance) + lift;
-  s.query[dir].contacts(probe, threshold, s.leaf_contacts);
+  const double probe_threshold = std::max(threshold, o.penetrating ? 0.0 : o.distance) + lift;
+  s.query[dir].contacts(probe, probe_threshold, s.leaf_contacts);
   for (const detail::LeafContact& c : s.leaf_contacts) {
     if (c.intersecting) continue;  // deeper than the lift: a lagging proxy; skipped
     out.push_back(detail::contactPointOf(s, dir, s.query[dir], c, lift));

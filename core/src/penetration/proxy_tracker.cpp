@@ -16,10 +16,10 @@ namespace {
 Rigid poseAt(const Mat3& r, const Vec3& center, const Vec3& y) { return {r, y - r * center}; }
 
 /// Gap the proxy keeps from contacts, so the normals it reads stay well defined.
-double skinOf(const SceneSettings& s) { return 0.25 * s.tolerance; }
+double skinOf(const PairSettings& s) { return 0.25 * s.tolerance; }
 /// contactsNear()'s margin in a slide: wider keeps the pairs over more iterations but
 /// evaluates more of them; two tolerances was the fastest of 1, 2 and 4 (haptic bench).
-double slideMarginOf(const SceneSettings& s) { return 2.0 * s.tolerance; }
+double slideMarginOf(const PairSettings& s) { return 2.0 * s.tolerance; }
 
 }  // namespace
 
@@ -43,7 +43,7 @@ void ProxyTracker::buildRows(GroupPairQuery& query, const Rigid& pose) {
 }
 
 int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
-                        const Vec3& center, const SceneSettings& settings, bool* feasible) {
+                        const Vec3& center, const PairSettings& settings, bool* feasible) {
   const double skin = skinOf(settings);
   const double size = query.targetSize();  // step thresholds are relative to it
   Vec3 y = proxy_ * center;
@@ -87,7 +87,7 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
 }
 
 void ProxyTracker::reportApart(GroupPairQuery& query, const Rigid& goal,
-                               const SceneSettings& settings, ProxyOutcome& out) {
+                               const PairSettings& settings, ProxyOutcome& out) {
   out.penetrating = false;
   out.contact_pose = goal;
   out.tpdv.setZero();
@@ -101,7 +101,7 @@ void ProxyTracker::reportApart(GroupPairQuery& query, const Rigid& goal,
 }
 
 void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                          const SceneSettings& settings, ProxyOutcome& out) {
+                          const PairSettings& settings, ProxyOutcome& out) {
   out = ProxyOutcome();
   if (!tracking_) {
     if (query.intersects(goal)) {
@@ -133,7 +133,7 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
 }
 
 bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                          const SceneSettings& settings, ProxyOutcome& out) {
+                          const PairSettings& settings, ProxyOutcome& out) {
   const RotationMode mode = settings.rotation_mode;
   if (mode == RotationMode::Free || mode == RotationMode::Mix)
     return turn(query, goal, center, settings, out);
@@ -170,7 +170,7 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
 }
 
 Rigid ProxyTracker::impactPose(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                               const SceneSettings& settings) {
+                               const PairSettings& settings) {
   // The input's motion from the last free proxy, translation and rotation together,
   // advanced to its first contact (within the skin): the pose at the time of impact.
   TwistMotion motion;
@@ -185,7 +185,7 @@ Rigid ProxyTracker::impactPose(GroupPairQuery& query, const Rigid& goal, const V
 }
 
 bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                        const SceneSettings& settings, ProxyOutcome& out) {
+                        const PairSettings& settings, ProxyOutcome& out) {
   out.iterations =
       twistSlide(query, proxy_, goal, center, previous_proxy_, settings, skinOf(settings), twist_);
   ran_out_ = out.iterations >= settings.max_iterations;
@@ -193,7 +193,7 @@ bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& ce
 }
 
 bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                                     const SceneSettings& settings, ProxyOutcome& out) {
+                                     const PairSettings& settings, ProxyOutcome& out) {
   // Depth against the exact planes (zero skin): unbiased by the skin. A proxy that
   // turned is projected with rotation too, or the skin would stay in its RPDV.
   query.contactsNear(proxy_, settings.tolerance, slideMarginOf(settings), contacts_);
@@ -233,7 +233,7 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, c
 }
 
 int ProxyTracker::projectTranslation(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                                     const SceneSettings& settings, Rigid& contact_pose,
+                                     const PairSettings& settings, Rigid& contact_pose,
                                      Vec3& normal) {
   const Vec3 y = proxy_ * center;
   buildRows(query, proxy_);
@@ -257,7 +257,7 @@ int ProxyTracker::projectTranslation(GroupPairQuery& query, const Rigid& goal, c
 }
 
 int ProxyTracker::projectTwist(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                               const SceneSettings& settings, Rigid& contact_pose, Vec3& normal) {
+                               const PairSettings& settings, Rigid& contact_pose, Vec3& normal) {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   const Vec3 y = proxy_ * center;
   buildContactRows(query, proxy_, y, contacts_, previous_proxy_, twist_.rows, settings.tolerance);

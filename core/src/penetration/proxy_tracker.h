@@ -9,7 +9,7 @@
 
 #include "penetration/twist_slide.h"
 #include "query/group_pair_query.h"
-#include "smartcollision/settings.h"
+#include "smartcollision/pair_settings.h"
 
 namespace sc::detail {
 
@@ -45,7 +45,7 @@ class ProxyTracker {
   /// `goal` places the target group in the opponent group's frame; `center` is the
   /// target's centre of rotation in its own group frame.
   void update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-              const SceneSettings& settings, ProxyOutcome& out);
+              const PairSettings& settings, ProxyOutcome& out);
   void forget() { tracking_ = false; }
   bool tracking() const { return tracking_; }
   /// Starts tracking with the proxy at `proxy`, a free pose found elsewhere (the
@@ -63,32 +63,32 @@ class ProxyTracker {
     Vec3 normal;
     double offset;  ///< normal . y >= offset (zero skin)
   };
-  void reportApart(GroupPairQuery& query, const Rigid& goal, const SceneSettings& settings,
+  void reportApart(GroupPairQuery& query, const Rigid& goal, const PairSettings& settings,
                    ProxyOutcome& out);
   /// Steps 2-3 for this update's rotation mode; true when the proxy reached the goal.
   bool follow(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-              const SceneSettings& settings, ProxyOutcome& out);
+              const PairSettings& settings, ProxyOutcome& out);
   /// Runs step 3 with the proxy rotation fixed to `rotation`; returns the iterations.
   /// `feasible` is false when the rows admit no translation (the proxy stays stuck).
   int slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
-            const Vec3& center, const SceneSettings& settings, bool* feasible);
+            const Vec3& center, const PairSettings& settings, bool* feasible);
   /// None mode: the pose where the motion from the last free proxy to `goal` first
   /// meets the opponent.
   Rigid impactPose(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                   const SceneSettings& settings);
+                   const PairSettings& settings);
   /// twistSlide from the proxy; true when it reached the goal.
   bool turn(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-            const SceneSettings& settings, ProxyOutcome& out);
+            const PairSettings& settings, ProxyOutcome& out);
   /// Fills `out` from the proxy; false when the goal itself only touches.
   bool reportPenetration(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                         const SceneSettings& settings, ProxyOutcome& out);
+                         const PairSettings& settings, ProxyOutcome& out);
   /// Zero-skin projection of the proxy at its rotation (3-D) or with rotation (6-D):
   /// sets the contact pose and the main contact's normal, returns the main contact's
   /// index in contacts_ (-1: none; kGoalTouches: the goal itself keeps every row).
   int projectTranslation(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                         const SceneSettings& settings, Rigid& contact_pose, Vec3& normal);
+                         const PairSettings& settings, Rigid& contact_pose, Vec3& normal);
   int projectTwist(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
-                   const SceneSettings& settings, Rigid& contact_pose, Vec3& normal);
+                   const PairSettings& settings, Rigid& contact_pose, Vec3& normal);
   static constexpr int kGoalTouches = -2;
   void buildRows(GroupPairQuery& query, const Rigid& pose);
   Vec3 seedNormal(GroupPairQuery& query, const LeafContact& c) const;

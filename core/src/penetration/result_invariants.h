@@ -3,7 +3,7 @@
 // finite fields, unit normal and quaternion, distance sign consistent with TPDV/RPDV.
 #pragma once
 
-#include "smartcollision/collision.h"
+#include "smartcollision/pair_tracker.h"
 #include "smartcollision/placement.h"
 
 namespace sc::detail {

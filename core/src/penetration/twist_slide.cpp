@@ -11,7 +11,7 @@ namespace sc::detail {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
-Vec6 twistWeights(const SceneSettings& settings, double rho) {
+Vec6 twistWeights(const PairSettings& settings, double rho) {
   Vec6 w;
   if (settings.rotation_mode == RotationMode::Mix) {
     w << Vec3::Constant(settings.force_stiffness), Vec3::Constant(settings.torque_stiffness);
@@ -34,7 +34,7 @@ double targetRadius(const GroupPairQuery& query, const Vec3& center) {
 }
 
 int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec3& center,
-               const Rigid& previous_proxy, const SceneSettings& settings, double skin,
+               const Rigid& previous_proxy, const PairSettings& settings, double skin,
                TwistScratch& scratch) {
   const double rho = targetRadius(query, center);
   const Vec6 weights = twistWeights(settings, rho);

@@ -7,7 +7,7 @@
 
 #include "penetration/conservative_advancement.h"
 #include "penetration/contact_rows.h"
-#include "smartcollision/settings.h"
+#include "smartcollision/pair_settings.h"
 
 namespace sc::detail {
 
@@ -24,7 +24,7 @@ struct TwistScratch {
 /// minimised first and rotation second. Input (only when no translation resolves):
 /// the reverse, rotation first. `rho` (target radius about its centre)
 /// makes the Free weights scale-free.
-Eigen::Matrix<double, 6, 1> twistWeights(const SceneSettings& settings, double rho);
+Eigen::Matrix<double, 6, 1> twistWeights(const PairSettings& settings, double rho);
 
 /// Moves `proxy` (o_from_t) towards `goal` with rotation free, never through the
 /// opponent: per iteration, contacts within the tolerance give rows kept at gap >=
@@ -33,7 +33,7 @@ Eigen::Matrix<double, 6, 1> twistWeights(const SceneSettings& settings, double r
 /// linearisation of rotation is first order); conservative advancement applies it.
 /// @return the iterations used.
 int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec3& center,
-               const Rigid& previous_proxy, const SceneSettings& settings, double skin,
+               const Rigid& previous_proxy, const PairSettings& settings, double skin,
                TwistScratch& scratch);
 
 /// Radius of the target's leaves about its centre (target group frame).

@@ -16,7 +16,7 @@
 #include "query/leaf_types.h"
 #include "query/near_pairs.h"
 #include "query/pair_cache.h"
-#include "smartcollision/collision.h"
+#include "smartcollision/group.h"
 
 namespace sc::detail {
 
@@ -86,10 +86,10 @@ class GroupPairQuery {
   double separationAlong(int t_leaf, int o_leaf, const Rigid& o_from_t, const Vec3& n);
 
   /// Largest s in [0, 1] such that translating the target by s * delta (opponent frame)
-  /// from `o_from_t` keeps every leaf pair not listed in `skip` at gap >= stop_gap/2,
-  /// ending at gap <= stop_gap when a pair blocks. Conservative advancement per pair.
+  /// from `o_from_t` keeps every leaf pair not listed in `skip` at gap >= skin/2,
+  /// ending at gap <= skin when a pair blocks. Conservative advancement per pair.
   /// `skip` is sorted (LeafPair::operator<).
-  double translationToi(const Rigid& o_from_t, const Vec3& delta, double stop_gap,
+  double translationToi(const Rigid& o_from_t, const Vec3& delta, double skin,
                         const std::vector<LeafPair>& skip);
 
   const TraversalCounters& counters() const { return counters_; }

@@ -23,18 +23,18 @@ struct GroupPairQuery::ToiPolicy {
   GroupPairQuery& q;
   const Vec3& delta;
   double reach_length;  ///< |delta|
-  double stop_gap;
+  double skin;
   const std::vector<LeafPair>& skip;
   double limit = 1.0;
   SimplexCache scratch_;                ///< warm start of the planes sampled along the motion
   static constexpr int kMaxPlanes = 6;  ///< sampled per node pair, past the two ends
 
   // The pair's gap shrinks by at most limit * |delta| along the way; a pair that
-  // starts within stop_gap would block at once.
+  // starts within skin would block at once.
   bool prunes(double bound) const {
-    return bound > stop_gap && bound - limit * reach_length > 0.5 * stop_gap;
+    return bound > skin && bound - limit * reach_length > 0.5 * skin;
   }
-  double reach() const { return limit * reach_length + 0.5 * stop_gap; }
+  double reach() const { return limit * reach_length + 0.5 * skin; }
   double splitWithin() const { return -1.0; }
   bool full() const { return false; }
   /// May tighten p's bound with the GJK it runs (then marked refined, so the
@@ -48,10 +48,10 @@ struct GroupPairQuery::ToiPolicy {
     const double swept =
         pointSegmentDistance(os.group_from_piece * o.center, c0, c0 + limit * delta) - t.radius -
         o.radius;
-    if (swept > 0.5 * stop_gap) return false;
+    if (swept > 0.5 * skin) return false;
     return !planesKeepApart(p);
   }
-  /// True when the hulls stay more than stop_gap apart up to `limit`, by separating
+  /// True when the hulls stay more than skin apart up to `limit`, by separating
   /// planes: along the normal n of the plane at some point s of the motion they part
   /// at the rate n.delta, whatever the distance does, so that plane keeps them apart
   /// over an interval around s. The planes at the start and at `limit` go first, then
@@ -87,10 +87,10 @@ struct GroupPairQuery::ToiPolicy {
     return q.nodeGjkAt(p, at, GjkSettings(), scratch_);
   }
   /// Where along the motion the separating plane of `r`, found at s, stays more than
-  /// stop_gap open; an empty interval (first > s) when it is not open at s.
+  /// skin open; an empty interval (first > s) when it is not open at s.
   std::pair<double, double> openInterval(const GjkResult& r, double s) const {
-    if (r.status != GjkStatus::Separated || r.distance <= stop_gap) return {kInfinity, -1.0};
-    const double room = r.distance - stop_gap;
+    if (r.status != GjkStatus::Separated || r.distance <= skin) return {kInfinity, -1.0};
+    const double room = r.distance - skin;
     const double closing = -r.normal.dot(delta);  // per unit of s, forwards
     const double ahead = closing <= 0.0 ? kInfinity : room / closing;
     const double behind = closing >= 0.0 ? kInfinity : room / -closing;
@@ -111,34 +111,34 @@ struct GroupPairQuery::ToiPolicy {
     for (int step = 0; step < kMaxAdvanceSteps && s < limit; ++step) {
       bool beyond = false;
       const LeafContact c = q.evaluate(p, translated(start, s * delta), kInfinity, beyond);
-      if (c.intersecting || c.gap <= stop_gap) break;
+      if (c.intersecting || c.gap <= skin) break;
       const double rate = -c.normal.dot(delta);
       if (rate <= 0.0) {
         s = limit;
         break;
       }
-      s = std::min(limit, s + (c.gap - 0.5 * stop_gap) / rate);
+      s = std::min(limit, s + (c.gap - 0.5 * skin) / rate);
     }
     limit = std::min(limit, s);
     return limit > 0.0;
   }
 };
 
-double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, double stop_gap,
+double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, double skin,
                                       const std::vector<LeafPair>& skip) {
   counters_ = TraversalCounters();
   const double reach_length = delta.norm();
   const double known = knownLowerBound(o_from_t);
-  if (known > stop_gap && known - reach_length > 0.5 * stop_gap) {
+  if (known > skin && known - reach_length > 0.5 * skin) {
     counters_.shortcut = true;
     return 1.0;
   }
   placeTargets(o_from_t);
-  ToiPolicy policy{*this, delta, reach_length, stop_gap, skip, 1.0, SimplexCache()};
+  ToiPolicy policy{*this, delta, reach_length, skin, skip, 1.0, SimplexCache()};
   // A pair that can block starts within this reach. When contactsNear()'s pairs hold
   // every pair within it, advance only those, nearest first; a pair whose gap (less
   // the translation since) rules it out is pruned as the traversal would.
-  const double reach = std::max(stop_gap, reach_length + 0.5 * stop_gap);
+  const double reach = std::max(skin, reach_length + 0.5 * skin);
   if (!near_.covers(o_from_t, reach)) {
     traverse(policy);
     return policy.limit;

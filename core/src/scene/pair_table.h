@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "smartcollision/collision.h"
+#include "smartcollision/pair_tracker.h"
 #include "smartcollision/scene.h"
 
 namespace sc::detail {

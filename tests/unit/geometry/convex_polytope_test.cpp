@@ -9,17 +9,14 @@
 #include <set>
 #include <vector>
 
+#include "support/brute_force.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
 namespace sc::detail {
 namespace {
 
-double bruteSupportValue(const ConvexPolytope& poly, const Vec3& d) {
-  double best = -kInfinity;
-  for (const Vec3& p : poly.vertices) best = std::max(best, p.dot(d));
-  return best;
-}
+using test::supportValue;
 
 TEST(ConvexPolytope, HillClimbingSupportEqualsBruteForceOnLargeHulls) {
   const std::uint64_t seed = 1234;
@@ -47,7 +44,7 @@ TEST(ConvexPolytope, HillClimbingSupportEqualsBruteForceOnLargeHulls) {
       ASSERT_LT(got, nv);
       EXPECT_EQ(hint, got);
       // Ties are allowed; the value must be the maximum.
-      EXPECT_GE(poly.vertices[got].dot(d), bruteSupportValue(poly, d) - 1e-15 * size * d.norm());
+      EXPECT_GE(poly.vertices[got].dot(d), supportValue(poly, d) - 1e-15 * size * d.norm());
       ++queries;
     }
   }
@@ -64,7 +61,7 @@ TEST(ConvexPolytope, OutOfRangeHintsAreTolerated) {
     int h = hint;
     const Vec3 d(0.3, -0.2, 0.9);
     const int got = poly.support(d, h);
-    EXPECT_GE(poly.vertices[got].dot(d), bruteSupportValue(poly, d) - 1e-15);
+    EXPECT_GE(poly.vertices[got].dot(d), supportValue(poly, d) - 1e-15);
   }
 }
 

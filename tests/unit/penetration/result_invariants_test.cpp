@@ -243,7 +243,7 @@ TEST(ResultInvariants, TrackedSequencesInEveryRotationModeKeepThem) {
   for (RotationMode mode :
        {RotationMode::None, RotationMode::Input, RotationMode::Free, RotationMode::Mix}) {
     for (int run = 0; run < 20; ++run) {
-      SceneSettings settings;
+      PairSettings settings;
       settings.rotation_mode = mode;
       PairTracker tracker;
       Placement pb = placementAt(Vec3::Zero(), test::randomRotation(rng));

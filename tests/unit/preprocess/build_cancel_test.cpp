@@ -17,22 +17,15 @@
 
 #include "sc_support/sample_meshes.h"
 #include "smartcollision/model.h"
+#include "support/temp_files.h"
 
 namespace sc {
 namespace {
 
-std::string tempPath(const std::string& name) {
-  const char* dir = std::getenv("TMPDIR");
-  return std::string(dir != nullptr ? dir : "/tmp") + "/sc_cancel_test_" +
-         std::to_string(::getpid()) + "_" + name;
-}
+using test::readBytes;
+using test::TempFile;
 
 bool exists(const std::string& path) { return std::ifstream(path).good(); }
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// Files beside `path` whose names start with its name and are not it: temporaries
 /// of a cache file write (path + ".tmp...").
@@ -49,13 +42,6 @@ std::vector<std::string> leftovers(const std::string& path) {
   ::closedir(d);
   return found;
 }
-
-/// Removes the file when the test ends.
-struct TempFile {
-  explicit TempFile(const std::string& name) : path(tempPath(name)) { std::remove(path.c_str()); }
-  ~TempFile() { std::remove(path.c_str()); }
-  std::string path;
-};
 
 /// Non-convex: decomposed into some forty patches.
 MeshData torus() { return samples::torusMesh(1.0, 0.3, 40, 20); }
@@ -75,7 +61,7 @@ BuildOptions cancelAt(double at, const std::string& cache, double& highest) {
 }
 
 TEST(BuildCancel, UncancelledBuildWritesTheCacheFile) {
-  const TempFile file("whole.bvh");
+  const TempFile file("sc_cancel_test", "whole.bvh");
   double highest = 0.0;
   const Result<PiecePtr> built =
       buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(2.0, file.path, highest));
@@ -87,7 +73,7 @@ TEST(BuildCancel, UncancelledBuildWritesTheCacheFile) {
 }
 
 TEST(BuildCancel, CancelDuringTheDecompositionStopsThereAndWritesNothing) {
-  const TempFile file("mid.bvh");
+  const TempFile file("sc_cancel_test", "mid.bvh");
   double highest = 0.0;
   const Result<PiecePtr> built =
       buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.3, file.path, highest));
@@ -101,7 +87,7 @@ TEST(BuildCancel, CancelDuringTheDecompositionStopsThereAndWritesNothing) {
 }
 
 TEST(BuildCancel, CancelOnTwoThreadsStopsTheWorkersAndWritesNothing) {
-  const TempFile file("threads.bvh");
+  const TempFile file("sc_cancel_test", "threads.bvh");
   double highest = 0.0;
   BuildOptions options = cancelAt(0.3, file.path, highest);
   options.threads = 2;
@@ -116,7 +102,7 @@ TEST(BuildCancel, CancelOnTwoThreadsStopsTheWorkersAndWritesNothing) {
 }
 
 TEST(BuildCancel, CancelDuringTheHierarchyWritesNothing) {
-  const TempFile file("late.bvh");
+  const TempFile file("sc_cancel_test", "late.bvh");
   double highest = 0.0;
   const Result<PiecePtr> built =
       buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.9, file.path, highest));
@@ -129,7 +115,7 @@ TEST(BuildCancel, CancelDuringTheHierarchyWritesNothing) {
 
 TEST(BuildCancel, CancelBeforeTheWorkFailsForEveryKind) {
   for (const ModelKind kind : {ModelKind::ClosedPolyhedron, ModelKind::TriangleSoup}) {
-    const TempFile file("early.bvh");
+    const TempFile file("sc_cancel_test", "early.bvh");
     double highest = 0.0;
     const Result<PiecePtr> built = buildPiece(kind, torus(), cancelAt(0.0, file.path, highest));
     ASSERT_FALSE(built.hasValue());
@@ -140,14 +126,14 @@ TEST(BuildCancel, CancelBeforeTheWorkFailsForEveryKind) {
 }
 
 TEST(BuildCancel, ExistingCacheFileIsLeftAsItWas) {
-  const TempFile file("stale.bvh");
+  const TempFile file("sc_cancel_test", "stale.bvh");
   const std::string stale = "not a cache file";
   std::ofstream(file.path, std::ios::binary) << stale;
   double highest = 0.0;
   const Result<PiecePtr> built =
       buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.5, file.path, highest));
   ASSERT_FALSE(built.hasValue());
-  EXPECT_EQ(readText(file.path), stale);
+  EXPECT_EQ(readBytes<std::string>(file.path), stale);
   EXPECT_TRUE(leftovers(file.path).empty());
 }
 

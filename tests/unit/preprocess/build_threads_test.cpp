@@ -14,33 +14,23 @@
 #include <string>
 #include <vector>
 
-#include "smartcollision/collision.h"
 #include "sc_support/sample_meshes.h"
+#include "smartcollision/collision.h"
+#include "support/temp_files.h"
 #include "support/test_support.h"
 
 namespace sc {
 namespace {
-
-std::string tempPath(const std::string& name) {
-  const char* dir = std::getenv("TMPDIR");
-  return std::string(dir != nullptr ? dir : "/tmp") + "/sc_threads_test_" +
-         std::to_string(::getpid()) + "_" + name;
-}
-
-std::string readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// Builds `mesh` on `threads` threads, writing its cache file; returns the piece
 /// and the file's bytes.
 PiecePtr buildWith(ModelKind kind, const MeshData& mesh, int threads, std::string& bytes) {
   BuildOptions options;
   options.threads = threads;
-  options.cache_file = tempPath(std::to_string(threads) + ".bvh");
+  options.cache_file = test::tempPath("sc_threads_test", std::to_string(threads) + ".bvh");
   std::remove(options.cache_file.c_str());
   const Result<PiecePtr> built = buildPiece(kind, mesh, options);
-  bytes = readBytes(options.cache_file);
+  bytes = test::readBytes<std::string>(options.cache_file);
   std::remove(options.cache_file.c_str());
   EXPECT_TRUE(built.ok()) << built.status().message();
   EXPECT_FALSE(built.value()->stats().from_cache);

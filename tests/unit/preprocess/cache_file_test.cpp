@@ -25,39 +25,21 @@
 #include "sc.h"
 #include "support/meshes.h"
 #include "support/shapes.h"
+#include "support/temp_files.h"
 #include "support/test_support.h"
 
 namespace sc::detail {
 namespace {
 
+using test::readBytes;
+using test::TempFile;
+using test::tempPath;
+using test::writeBytes;
+
 // Header: magic 8, version 4, endian 4, kind 4, reserved 4, hash 8, size 8, checksum 8.
 constexpr std::size_t kHeaderBytes = 48;
 constexpr std::size_t kVersionOffset = 8;
 constexpr std::size_t kHashOffset = 24;
-
-std::string tempPath(const std::string& name) {
-  const char* dir = std::getenv("TMPDIR");
-  return std::string(dir != nullptr ? dir : "/tmp") + "/sc_cache_test_" +
-         std::to_string(::getpid()) + "_" + name;
-}
-
-std::vector<std::uint8_t> readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(bytes.data()),
-            static_cast<std::streamsize>(bytes.size()));
-}
-
-/// Removes the file when the test ends.
-struct TempFile {
-  explicit TempFile(const std::string& name) : path(tempPath(name)) { std::remove(path.c_str()); }
-  ~TempFile() { std::remove(path.c_str()); }
-  std::string path;
-};
 
 void expectSamePolytope(const ConvexPolytope& a, const ConvexPolytope& b) {
   ASSERT_EQ(a.vertices, b.vertices);
@@ -178,7 +160,7 @@ TEST(CacheFileMesh, RealMeshRoundTripIsExactAndAnswersTheSame) {
   ASSERT_NO_FATAL_FAILURE(elephant = test::loadTestMesh("elephant"));
   const Result<PiecePtr> fresh_piece = buildPiece(ModelKind::ClosedPolyhedron, elephant);
   ASSERT_TRUE(fresh_piece.ok());
-  TempFile file("elephant.bvh");
+  TempFile file("sc_cache_test", "elephant.bvh");
   BuildOptions options;
   options.cache_file = file.path;
   const Result<PiecePtr> first = buildPiece(ModelKind::ClosedPolyhedron, elephant, options);
@@ -209,7 +191,7 @@ TEST(CacheFileMesh, RealMeshRoundTripIsExactAndAnswersTheSame) {
 // memory, checksum included, and loads.
 TEST(CacheFileMesh, FileWrittenInChunksEqualsTheEncodedBytes) {
   const MeshData soup = test::torusMesh(1.0, 0.3, 60, 40);  // 4,800 triangles
-  TempFile file("chunks.bvh");
+  TempFile file("sc_cache_test", "chunks.bvh");
   BuildOptions options;
   options.cache_file = file.path;
   const Result<PiecePtr> built = buildPiece(ModelKind::TriangleSoup, soup, options);
@@ -224,7 +206,7 @@ TEST(CacheFileMesh, FileWrittenInChunksEqualsTheEncodedBytes) {
 }
 
 TEST_F(CacheFile, RoundTripLoadsTheSamePreprocessing) {
-  TempFile file("roundtrip.bvh");
+  TempFile file("sc_cache_test", "roundtrip.bvh");
   const Result<PiecePtr> first = starThrough(file.path);
   ASSERT_TRUE(first.ok()) << first.status().message();
   EXPECT_FALSE(first.value()->stats().from_cache);
@@ -256,7 +238,7 @@ TEST_F(CacheFile, EncodeDecodeRoundTripIsExact) {
 }
 
 TEST_F(CacheFile, TruncatedFilesAreRebuiltAndRewritten) {
-  TempFile file("truncated.bvh");
+  TempFile file("sc_cache_test", "truncated.bvh");
   ASSERT_TRUE(starThrough(file.path).ok());
   const std::vector<std::uint8_t> valid = readBytes(file.path);
   for (const std::size_t length :
@@ -274,7 +256,7 @@ TEST_F(CacheFile, TruncatedFilesAreRebuiltAndRewritten) {
 }
 
 TEST_F(CacheFile, FlippedBytesAreRebuiltAndRewritten) {
-  TempFile file("flipped.bvh");
+  TempFile file("sc_cache_test", "flipped.bvh");
   ASSERT_TRUE(starThrough(file.path).ok());
   const std::vector<std::uint8_t> valid = readBytes(file.path);
   for (const std::size_t at :
@@ -291,7 +273,7 @@ TEST_F(CacheFile, FlippedBytesAreRebuiltAndRewritten) {
 }
 
 TEST_F(CacheFile, AnotherMeshsCacheIsRebuiltForThisMesh) {
-  TempFile file("foreign.bvh");
+  TempFile file("sc_cache_test", "foreign.bvh");
   BuildOptions options;
   options.cache_file = file.path;
   const Result<PiecePtr> other = buildPiece(ModelKind::ClosedPolyhedron, *other_, options);
@@ -308,7 +290,7 @@ TEST_F(CacheFile, AnotherMeshsCacheIsRebuiltForThisMesh) {
 }
 
 TEST_F(CacheFile, OtherVersionIsRebuiltAndRewritten) {
-  TempFile file("version.bvh");
+  TempFile file("sc_cache_test", "version.bvh");
   ASSERT_TRUE(starThrough(file.path).ok());
   const std::vector<std::uint8_t> valid = readBytes(file.path);
   for (const std::uint32_t version : {kPieceCacheVersion - 1, kPieceCacheVersion + 1}) {
@@ -321,7 +303,7 @@ TEST_F(CacheFile, OtherVersionIsRebuiltAndRewritten) {
 
 TEST_F(CacheFile, UnwritableFileGivesThePieceAndAFileWarning) {
   BuildOptions options;
-  options.cache_file = tempPath("no_such_dir") + "/piece.bvh";
+  options.cache_file = tempPath("sc_cache_test", "no_such_dir") + "/piece.bvh";
   const Result<PiecePtr> piece = buildPiece(ModelKind::ClosedPolyhedron, *star_, options);
   ASSERT_TRUE(piece.hasValue());
   EXPECT_EQ(piece.status().code(), ErrorCode::File);
@@ -341,7 +323,7 @@ TEST_F(CacheFile, UnwritableFileGivesThePieceAndAFileWarning) {
 }
 
 TEST_F(CacheFile, FifoIsNeitherReadNorReplaced) {
-  TempFile fifo("fifo.bvh");
+  TempFile fifo("sc_cache_test", "fifo.bvh");
   ASSERT_EQ(::mkfifo(fifo.path.c_str(), 0600), 0);
   std::future<Result<PiecePtr>> build =
       std::async(std::launch::async, [&fifo] { return starThrough(fifo.path); });

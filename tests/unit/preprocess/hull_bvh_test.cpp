@@ -22,12 +22,7 @@
 namespace sc::detail {
 namespace {
 
-/// Largest value of dir . x over the polytope's vertices.
-double supportValue(const ConvexPolytope& p, const Vec3& dir) {
-  double best = -kInfinity;
-  for (const Vec3& v : p.vertices) best = std::max(best, dir.dot(v));
-  return best;
-}
+using test::supportValue;
 
 /// `point` lies in `hull`: inside every face plane for a faceted hull; for a bare
 /// point set (or a flat polygon) no direction separates it from the vertices.

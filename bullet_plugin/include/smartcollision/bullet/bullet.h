@@ -8,4 +8,3 @@
 #include "smartcollision/bullet/sc_dynamics_world.h"
 #include "smartcollision/bullet/settings.h"
 #include "smartcollision/bullet/stacking_solver.h"
-#include "smartcollision/bullet/virtual_coupling.h"

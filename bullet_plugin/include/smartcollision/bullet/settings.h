@@ -17,19 +17,19 @@ enum class ContactModel : std::uint8_t {
 
 /// Spring-damper of the potential model, integrated implicitly by Bullet's solver as
 /// rows at the contact points of a pair (docs/bullet.md). With omega =
-/// 2 pi / (contact_period_steps dt): by default (force_stiffness 0) each row is rigid
+/// 2 pi / (contact_period_steps dt): by default (contact_stiffness 0) each row is rigid
 /// at the velocity level and recovers depth at the rate of a spring-damper of
 /// frequency omega and ratio damping_ratio relative to the row's own effective mass
 /// (erp = dt omega / (dt omega + 2 zeta)): no sag under any load or mass ratio beyond
-/// what the solver's iterations leave. A force_stiffness set here is a true implicit
+/// what the solver's iterations leave. A contact_stiffness set here is a true implicit
 /// spring kT spread over the pair's rows, honoured as given (statics: sag = load / kT).
 struct ContactSettings {
   double contact_period_steps = 10.0;  ///< natural period of a contact in substeps (>= 1)
   double damping_ratio = 1.0;          ///< zeta; 1 = critical (>= 0)
-  double force_stiffness = 0.0;        ///< kT [N/m]; 0 = derived
+  double contact_stiffness = 0.0;      ///< kT [N/m]; 0 = derived
   /// kR [N m/rad]; 0 = derived (I omega^2). Weighs rotation against translation in
   /// the Mix rotation mode; the rows' torque is the contact polygon's (docs/bullet.md).
-  double torque_stiffness = 0.0;
+  double contact_torque_stiffness = 0.0;
   double friction_scale = 1.0;         ///< scales Bullet's combined friction (potential model)
 };
 
@@ -42,7 +42,8 @@ struct PluginSettings {
   ContactModel model = ContactModel::Potential;
   ContactSettings contact;  ///< world default; bodies may override (Plugin::setBodySettings)
   /// Tolerance, iterations and rotation mode of the dynamic penetration depth. The
-  /// plugin sets force_stiffness / torque_stiffness per pair (they weigh Mix).
+  /// plugin sets force_stiffness / torque_stiffness per pair from the contact spring
+  /// (they weigh Mix).
   SceneSettings query = defaultQuerySettings();
   /// Pairs that start intersecting deeper than the spring can take (its energy
   /// 1/2 k d^2 above 1/2 m_red v^2, i.e. d > v / omega) are pushed apart at overlap /

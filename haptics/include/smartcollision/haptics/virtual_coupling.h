@@ -36,7 +36,7 @@
 
 #include "smartcollision/types.h"
 
-namespace sc::bullet {
+namespace sc::haptics {
 
 /// A pose in world coordinates (device or body centre of mass).
 struct CouplingPose {
@@ -207,4 +207,4 @@ class PoseScript {
   std::vector<PoseSample> samples_;
 };
 
-}  // namespace sc::bullet
+}  // namespace sc::haptics

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Virtual coupling, its gains and passivity check, the energy monitor and pose scripts.
-#include "smartcollision/bullet/virtual_coupling.h"
+#include "smartcollision/haptics/virtual_coupling.h"
 
 #include <sys/stat.h>
 
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace sc::bullet {
+namespace sc::haptics {
 
 namespace {
 
@@ -303,4 +303,4 @@ CouplingPose PoseScript::sample(double t) const {
   return p;
 }
 
-}  // namespace sc::bullet
+}  // namespace sc::haptics

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// What one pair's update needs: reach, tolerance, proxy iterations and the rotation
+// mode. A scene's settings add how it finds and runs its pairs (settings.h).
+#pragma once
+
+#include "smartcollision/types.h"
+
+namespace sc {
+
+/// Default of PairSettings::tolerance (model units).
+inline constexpr double kDefaultTolerance = 1e-3;
+/// Floor of the tolerance: a pair's tolerance is raised to kMinRelativeTolerance x
+/// sqrt(r (r + d)), r the target's radius and d its centre's distance from the
+/// opponent's origin; below it, rounding of the coordinates tilts contact normals
+/// enough to move the contact configuration by more than the tolerance.
+inline constexpr double kMinRelativeTolerance = 1e-7;
+/// Default of PairSettings::safety_coefficient; the manual says not to change it.
+inline constexpr double kDefaultSafetyCoefficient = 0.49;
+/// Default of PairSettings::max_iterations.
+inline constexpr int kDefaultMaxIterations = 30;
+
+struct PairSettings {
+  /// Pairs whose distance exceeds this report NoResult (model units; +inf = all pairs).
+  double max_distance = kInfinity;
+  /// Accuracy of the dynamic penetration depth: the contact configuration penetrates
+  /// by at most about this and lies within about this of touching (model units, > 0;
+  /// an absolute length, raised per pair to its floor kMinRelativeTolerance).
+  double tolerance = kDefaultTolerance;
+  /// Fraction of the tolerance a rotational step of the proxy may move a point (0, 1).
+  double safety_coefficient = kDefaultSafetyCoefficient;
+  /// Proxy iterations per update and direction (>= 1).
+  int max_iterations = kDefaultMaxIterations;
+  RotationMode rotation_mode = RotationMode::Input;
+  /// kT of manual (5-3) and (5-5), used by RotationMode::Mix (force per model unit, > 0).
+  double force_stiffness = 1.0;
+  /// kR of manual (5-4) and (5-5), used by RotationMode::Mix (torque per radian, > 0).
+  double torque_stiffness = 1.0;
+  /// A direction first seen intersecting starts from a nearby free pose found by EPA
+  /// on its intersecting convex leaves (and reports that depth) instead of reporting
+  /// InvalidInitialTransformation. Off by default, as in the manual.
+  bool resolve_initial_intersection = false;
+};
+
+/// Ok, or InvalidArgument naming the first field out of range.
+SC_API Status validate(const PairSettings& settings);
+
+}  // namespace sc

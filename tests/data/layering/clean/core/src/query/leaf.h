@@ -1,0 +1,3 @@
+#pragma once
+#include "geometry/math_util.h"
+#include "smartcollision/group.h"

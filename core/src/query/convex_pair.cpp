@@ -21,30 +21,7 @@ constexpr double kSliver = 1e-9;
 // The expansion adds one vertex per iteration; a polytope pair needs far fewer.
 constexpr int kMaxIterations = 512;
 
-/// Support mapping of A - B in A's frame, hints carried between calls.
-struct Cso {
-  const ConvexPolytope& a;
-  const ConvexPolytope& b;
-  Rigid a_from_b;
-  Mat3 b_from_a_rotation;
-  int hint_a;
-  int hint_b;
-
-  Vertex pair(int ia, int ib) const {
-    Vertex v;
-    v.ia = ia;
-    v.ib = ib;
-    v.pa = a.vertices[ia];
-    v.pb = a_from_b * b.vertices[ib];
-    v.w = v.pa - v.pb;
-    return v;
-  }
-  Vertex support(const Vec3& d) {
-    const int ia = a.support(d, hint_a);
-    const int ib = b.support(b_from_a_rotation * (-d), hint_b);
-    return pair(ia, ib);
-  }
-};
+using Cso = MinkowskiSupport;
 
 /// The expanding polytope over the scratch arrays: faces with their neighbours and
 /// a min-heap of (distance, face) from which removed faces are dropped lazily.
@@ -184,17 +161,6 @@ class Polytope {
   double tolerance_;
 };
 
-/// Barycentric weights of the projection of x on triangle (p0, p1, p2).
-Vec3 barycentric(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& x) {
-  const Vec3 e1 = p1 - p0, e2 = p2 - p0, v = x - p0;
-  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
-  const double det = d11 * d22 - d12 * d12;
-  if (!(det > 0.0)) return Vec3(1.0, 0.0, 0.0);
-  const double u = (d22 * v.dot(e1) - d12 * v.dot(e2)) / det;
-  const double t = (d11 * v.dot(e2) - d12 * v.dot(e1)) / det;
-  return Vec3(1.0 - u - t, u, t);
-}
-
 /// The first polytope: GJK's tetrahedron, oriented outward. False when it is flat.
 bool startTetrahedron(const SimplexCache& simplex, const Cso& cso, Polytope& p) {
   Vertex v[4];
@@ -219,7 +185,7 @@ void report(Polytope& p, int f, const Rigid& frame_from_a, EpaResult& out) {
   // A - B moved by -depth * n puts the origin on this face: A moves by -depth * n.
   out.normal = frame_from_a.rotation * (-face.n);
   const Vertex &v0 = p.vertex(face.v[0]), &v1 = p.vertex(face.v[1]), &v2 = p.vertex(face.v[2]);
-  const Vec3 l = barycentric(v0.w, v1.w, v2.w, face.d * face.n);
+  const Vec3 l = triangleWeights(v0.w, v1.w, v2.w, face.d * face.n);
   out.point_a = frame_from_a * Vec3(l[0] * v0.pa + l[1] * v1.pa + l[2] * v2.pa);
   out.point_b = frame_from_a * Vec3(l[0] * v0.pb + l[1] * v1.pb + l[2] * v2.pb);
   out.face_count = 3;

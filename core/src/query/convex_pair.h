@@ -10,19 +10,14 @@
 
 #include "query/epa.h"
 #include "query/gjk.h"
+#include "query/minkowski.h"
 
 namespace sc::detail {
 
 /// Work arrays of convexDepth(), kept between calls: once grown, a call allocates
 /// nothing.
 struct EpaScratch {
-  struct Vertex {
-    Vec3 w;   ///< pa - pb
-    Vec3 pa;  ///< on A, A's frame
-    Vec3 pb;  ///< on B, A's frame
-    int ia = -1;
-    int ib = -1;
-  };
+  using Vertex = MinkowskiVertex;
   struct Face {
     int v[3] = {0, 0, 0};       ///< outward counter-clockwise
     int adj[3] = {-1, -1, -1};  ///< face across edge (v[k], v[k + 1])

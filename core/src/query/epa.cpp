@@ -6,6 +6,7 @@
 
 #include "geometry/math_util.h"
 #include "preprocess/convex_hull.h"
+#include "query/minkowski.h"
 
 namespace sc::detail {
 
@@ -36,17 +37,6 @@ class Difference {
   Rigid fa_, fb_;
   int hint_a_ = 0, hint_b_ = 0;
 };
-
-/// Barycentric weights of the projection of the origin on triangle (p0, p1, p2).
-Vec3 barycentric(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& x) {
-  const Vec3 e1 = p1 - p0, e2 = p2 - p0, v = x - p0;
-  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
-  const double det = d11 * d22 - d12 * d12;
-  if (!(det > 0.0)) return Vec3(1.0, 0.0, 0.0);
-  const double u = (d22 * v.dot(e1) - d12 * v.dot(e2)) / det;
-  const double t = (d11 * v.dot(e2) - d12 * v.dot(e1)) / det;
-  return Vec3(1.0 - u - t, u, t);
-}
 
 }  // namespace
 
@@ -106,7 +96,7 @@ EpaResult penetrationDepth(const ConvexPolytope& a, const Rigid& frame_from_a,
       out.normal = -best_n;
       const Tri& t = h.faces[best];
       const int i0 = h.original[t[0]], i1 = h.original[t[1]], i2 = h.original[t[2]];
-      const Vec3 lambda = barycentric(set.w[i0], set.w[i1], set.w[i2], best_d * best_n);
+      const Vec3 lambda = triangleWeights(set.w[i0], set.w[i1], set.w[i2], best_d * best_n);
       out.point_a = lambda[0] * set.pa[i0] + lambda[1] * set.pa[i1] + lambda[2] * set.pa[i2];
       out.point_b = lambda[0] * set.pb[i0] + lambda[1] * set.pb[i1] + lambda[2] * set.pb[i2];
       return out;

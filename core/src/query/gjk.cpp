@@ -19,6 +19,7 @@
 #include <limits>
 
 #include "geometry/math_util.h"
+#include "query/minkowski.h"
 
 namespace sc::detail {
 namespace {
@@ -35,13 +36,7 @@ constexpr double kFlatTetrahedron = 1e-12;
 // Cached vertices closer than this to affine dependence are dropped.
 constexpr double kWarmIndependence = 1e-6;
 
-struct Vertex {
-  Vec3 w;   ///< pa - pb
-  Vec3 pa;  ///< on A (A's frame)
-  Vec3 pb;  ///< on B (A's frame)
-  int ia = -1;
-  int ib = -1;
-};
+using Vertex = MinkowskiVertex;
 
 struct Simplex {
   Vertex v[4];
@@ -190,30 +185,7 @@ void reduce(Simplex& s) {
   s.vv = r.count == 4 ? 0.0 : r.vv;
 }
 
-/// Support mapping of A - B in A's frame.
-struct Cso {
-  const ConvexPolytope& a;
-  const ConvexPolytope& b;
-  Rigid a_from_b;
-  Mat3 b_from_a_rotation;
-  int hint_a;
-  int hint_b;
-
-  Vertex pair(int ia, int ib) const {
-    Vertex v;
-    v.ia = ia;
-    v.ib = ib;
-    v.pa = a.vertices[ia];
-    v.pb = a_from_b * b.vertices[ib];
-    v.w = v.pa - v.pb;
-    return v;
-  }
-  Vertex support(const Vec3& d) {
-    const int ia = a.support(d, hint_a);
-    const int ib = b.support(b_from_a_rotation * (-d), hint_b);
-    return pair(ia, ib);
-  }
-};
+using Cso = MinkowskiSupport;
 
 bool contains(const Simplex& s, const Vertex& w) {
   for (int m = 0; m < s.count; ++m) {

@@ -52,8 +52,10 @@ void ScDynamicsWorld::measureRowsAgain() {
   // on it would then read the projection as depth (a body put back 3 cm along a
   // neighbour's normal read 6 mm into that neighbour). Those pairs measure again.
   // After the integration a body put back may land in the one that fell behind it:
-  // that one is moved out in turn (StepBuffer::cascade), a few links down the chain.
-  constexpr int kCascades = 4;
+  // that one is moved out in turn (StepBuffer::cascade), and so on down the chain:
+  // in a pile of 24 tori at 60 Hz, 4 passes left 10-12 mm in one drop of seven, 16
+  // none over 9 mm, at some 20 % more time per step while bodies land.
+  constexpr int kCascades = 16;
   detail::StepBuffer& step = plugin_->stepBuffer();
   const StepStats first = step.stats();
   int projected = 0;

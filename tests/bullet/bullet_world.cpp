@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "support/shapes.h"
 
 namespace sc::test {
@@ -71,6 +74,25 @@ std::shared_ptr<bullet::ScBulletShape> boxShape(const btVector3& h) {
       ModelKind::ClosedPolyhedron, boxMesh(Vec3(h.x(), h.y(), h.z())));
   EXPECT_TRUE(s.ok()) << s.status().message();
   return s.value();
+}
+
+double boxCornerDepth(const btRigidBody& a, const btRigidBody* b, double half) {
+  const btScalar h = btScalar(half);
+  double deepest = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    const btVector3 c((i & 1) ? h : -h, (i & 2) ? h : -h, (i & 4) ? h : -h);
+    const btVector3 w = a.getWorldTransform() * c;
+    if (b == nullptr) {
+      deepest = std::max(deepest, -double(w.y()));
+      continue;
+    }
+    const btVector3 l = b->getWorldTransform().inverse() * w;
+    double inside = half - std::abs(double(l.x()));
+    inside = std::min(inside, half - std::abs(double(l.y())));
+    inside = std::min(inside, half - std::abs(double(l.z())));
+    deepest = std::max(deepest, inside);
+  }
+  return deepest;
 }
 
 }  // namespace sc::test

@@ -45,6 +45,11 @@ inline std::string contactModelName(const ::testing::TestParamInfo<bullet::Conta
   return info.param == bullet::ContactModel::Potential ? "Potential" : "Manifold";
 }
 
+/// Deepest corner of box `a` inside box `b` (both cubes of half edge `half`), or below
+/// the ground (y < 0) when `b` is null; 0 when none is inside. Exact, for overlaps
+/// measured independently of SmartCollision.
+double boxCornerDepth(const btRigidBody& a, const btRigidBody* b, double half);
+
 /// An ScBulletShape of a closed box mesh (half extents h); fails the test on error.
 std::shared_ptr<bullet::ScBulletShape> boxShape(const btVector3& h);
 

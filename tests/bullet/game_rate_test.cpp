@@ -23,34 +23,13 @@ constexpr double kSize = 0.5;   // box edge [m]
 constexpr double kGap = 0.002;  // spawn gap between boxes [m]
 constexpr double kSeconds = SC_TEST_SANITIZED ? 2.0 : 10.0;
 
-/// Deepest corner of box `a` inside box `b` (both of edge kSize), or inside the
-/// ground (y < 0) when `b` is null; 0 when none is inside.
-double cornerDepth(const btRigidBody& a, const btRigidBody* b) {
-  const double h = 0.5 * kSize;
-  double deepest = 0.0;
-  for (int i = 0; i < 8; ++i) {
-    const btVector3 c((i & 1) ? h : -h, (i & 2) ? h : -h, (i & 4) ? h : -h);
-    const btVector3 w = a.getWorldTransform() * c;
-    if (b == nullptr) {
-      deepest = std::max(deepest, -double(w.y()));
-      continue;
-    }
-    const btVector3 l = b->getWorldTransform().inverse() * w;
-    double inside = h - std::abs(double(l.x()));
-    inside = std::min(inside, h - std::abs(double(l.y())));
-    inside = std::min(inside, h - std::abs(double(l.z())));
-    deepest = std::max(deepest, inside);
-  }
-  return deepest;
-}
-
 /// Largest overlap of a column of boxes (each on the one below, the first on the
 /// ground), both ways round for each pair.
 double columnOverlap(const std::vector<btRigidBody*>& column) {
-  double worst = cornerDepth(*column[0], nullptr);
+  double worst = boxCornerDepth(*column[0], nullptr, 0.5 * kSize);
   for (std::size_t i = 1; i < column.size(); ++i) {
-    worst = std::max(worst, cornerDepth(*column[i], column[i - 1]));
-    worst = std::max(worst, cornerDepth(*column[i - 1], column[i]));
+    worst = std::max(worst, boxCornerDepth(*column[i], column[i - 1], 0.5 * kSize));
+    worst = std::max(worst, boxCornerDepth(*column[i - 1], column[i], 0.5 * kSize));
   }
   return worst;
 }

@@ -19,25 +19,6 @@ namespace {
 constexpr double kHalf = 0.25;  // box half edge [m]
 constexpr double kSeconds = SC_TEST_SANITIZED ? 2.0 : 10.0;
 
-/// Deepest corner of box `a` inside box `b`, or below the ground (y < 0) when `b` is null.
-double cornerDepth(const btRigidBody& a, const btRigidBody* b) {
-  double deepest = 0.0;
-  for (int i = 0; i < 8; ++i) {
-    const btVector3 c((i & 1) ? kHalf : -kHalf, (i & 2) ? kHalf : -kHalf, (i & 4) ? kHalf : -kHalf);
-    const btVector3 w = a.getWorldTransform() * c;
-    if (b == nullptr) {
-      deepest = std::max(deepest, -double(w.y()));
-      continue;
-    }
-    const btVector3 l = b->getWorldTransform().inverse() * w;
-    double inside = kHalf - std::abs(double(l.x()));
-    inside = std::min(inside, kHalf - std::abs(double(l.y())));
-    inside = std::min(inside, kHalf - std::abs(double(l.z())));
-    deepest = std::max(deepest, inside);
-  }
-  return deepest;
-}
-
 /// Swaps the world's solver for Bullet's plain one.
 void usePlainSolver(BulletWorld& w) {
   auto plain = std::make_unique<btSequentialImpulseConstraintSolver>();
@@ -79,10 +60,10 @@ Outcome runBoxColumn(bool stacking, double hz) {
       o.drift = std::max(o.drift, std::hypot(double(p.x()), double(p.z())));
     }
     if (i < steps - last) continue;
-    o.overlap = std::max(o.overlap, cornerDepth(*column[0], nullptr));
+    o.overlap = std::max(o.overlap, boxCornerDepth(*column[0], nullptr, kHalf));
     for (std::size_t k = 1; k < column.size(); ++k) {
-      o.overlap = std::max(o.overlap, cornerDepth(*column[k], column[k - 1]));
-      o.overlap = std::max(o.overlap, cornerDepth(*column[k - 1], column[k]));
+      o.overlap = std::max(o.overlap, boxCornerDepth(*column[k], column[k - 1], kHalf));
+      o.overlap = std::max(o.overlap, boxCornerDepth(*column[k - 1], column[k], kHalf));
     }
     for (btRigidBody* b : column) s2 += double(b->getLinearVelocity().length2());
   }
@@ -159,7 +140,7 @@ TEST_P(StackingSolverDrop, HeavyOnLightGainsNoEnergy) {
     rise = std::max(rise, energy() - start);
     const btVector3 p = light->getCenterOfMassPosition();
     drift = std::max(drift, std::hypot(double(p.x()), double(p.z())));
-    if (i >= steps - 60) overlap = std::max(overlap, cornerDepth(*heavy, light));
+    if (i >= steps - 60) overlap = std::max(overlap, boxCornerDepth(*heavy, light, kHalf));
   }
   const double rms = std::sqrt(w.kineticEnergy() / 1001.0 * 2.0);
   std::printf(

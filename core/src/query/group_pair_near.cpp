@@ -108,9 +108,34 @@ void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
   // there and lent back to it on every call.
   o_from_piece_.swap(pending.o_from_piece);
   placeTargets(o_from_t);
-  ContactsPolicy policy{*this, reach, pending.found};
-  seedTraversal(policy, pending.heap);
+  ContactsPolicy policy{*this, reach, pending.found, &front_};
+  seedPendingNear(policy, o_from_t, pending.heap);
   o_from_piece_.swap(pending.o_from_piece);
+}
+
+void GroupPairQuery::seedPendingNear(ContactsPolicy& policy, const Rigid& o_from_t,
+                                     std::vector<NodePair>& heap) {
+  const double moved = displacementBound(front_.pose(), o_from_t);
+  if (!front_.serves(moved, policy.threshold)) {
+    front_.begin(true);
+    seedTraversal(policy, heap);
+    return;
+  }
+  // Every entry's bound drops by the motion since the front's pose; those that may now
+  // be within reach are taken again (node pairs with a fresh GJK bound), the others
+  // stay in the front as they are.
+  front_.begin(false);
+  heap.clear();
+  for (NodePair p : front_.pairs()) {
+    p.bound = std::max(0.0, p.bound - moved);
+    if (policy.prunes(p.bound)) {
+      front_.record(p);
+      continue;
+    }
+    p.refined = false;
+    heap.push_back(p);
+  }
+  std::make_heap(heap.begin(), heap.end(), Farther());
 }
 
 TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, double threshold,
@@ -131,7 +156,7 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
   const TraversalCounters saved = counters_;
   counters_ = TraversalCounters();
   o_from_piece_.swap(pending.o_from_piece);
-  ContactsPolicy policy{*this, pending.reach, pending.found};
+  ContactsPolicy policy{*this, pending.reach, pending.found, &front_};
   const bool done = runTraversal(policy, pending.heap, budget, until);
   o_from_piece_.swap(pending.o_from_piece);
   const TraversalCounters work = counters_;
@@ -150,6 +175,12 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
   sortContacts(pending.found);
   const Rigid pose = pending.pose;
   const double reach = pending.reach;
+  for (const LeafContact& c : pending.found) {  // the rest of the front
+    NodePair p = leafPair(c.t_leaf, c.o_leaf);
+    p.bound = c.gap;
+    front_.record(p);
+  }
+  front_.finish(pose);
   near_.finishPending();
   installNear(pose, reach);
   return installed;

@@ -66,6 +66,29 @@ void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshol
   counters_.ahead_installed = ahead.ahead_installed;
 }
 
+bool GroupPairQuery::distanceNear(const Rigid& o_from_t, double max_distance, LeafContact& best,
+                                  bool& found) {
+  // The kept pairs hold every leaf pair within `covered` here, and a leaf's hull is
+  // never farther than its triangles: the nearest kept pair, when within that, is the
+  // distance (a proxy just out of contact), with no traversal.
+  const double covered = near_.coveredReach(o_from_t);
+  if (!(covered > 0.0)) return false;
+  near_.prepareBounds(o_from_t);
+  double bound = found ? std::min(best.gap, max_distance) : max_distance;
+  for (std::size_t i = 0; i < near_.pairs().size(); ++i) {
+    if (near_.gapBound(i) >= std::min(bound, covered)) continue;
+    const LeafContact& kept = near_.pairs()[i];
+    bool beyond = false;
+    const LeafContact c = exactLeafDistance(leafPair(kept.t_leaf, kept.o_leaf), bound, beyond);
+    if (beyond || (found && c.gap >= best.gap)) continue;
+    best = c;
+    found = true;
+    bound = std::min(c.gap, max_distance);
+    if (c.intersecting) break;
+  }
+  return found && best.gap <= covered;
+}
+
 void GroupPairQuery::evaluateNear(const Rigid& o_from_t, double threshold,
                                   std::vector<LeafContact>& out) {
   counters_ = TraversalCounters();

@@ -428,7 +428,9 @@ bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafCo
   } else {
     seed_ = LeafPair();  // the traversal measures it in its turn
   }
-  if (!(policy.found && best.intersecting)) traverse(policy);
+  const bool done = (policy.found && best.intersecting) ||
+                    distanceNear(o_from_t, max_distance, best, policy.found);
+  if (!done) traverse(policy);
   if (policy.found) seed_ = {best.t_leaf, best.o_leaf};
   known_ = true;
   known_pose_ = o_from_t;

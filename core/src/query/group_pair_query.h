@@ -50,7 +50,8 @@ class GroupPairQuery {
   /// Exact surface distance: a leaf pair whose GJK closest points lie on real faces
   /// is final; otherwise (a virtual feature: the patch's hull may reach out of the
   /// solid by the decomposition's tolerance) it is measured on its real triangles.
-  /// Seeded with the last call's closest pair.
+  /// Seeded with the last call's closest pair; answered from contactsNear()'s kept
+  /// pairs, without a traversal, when they cover the pose up to the distance found.
   bool distance(const Rigid& o_from_t, double max_distance, LeafContact& best);
 
   /// Pairs a contacts query gathers at most: two overlapping 10k-triangle meshes have
@@ -147,6 +148,9 @@ class GroupPairQuery {
   /// contactsNear() without its memo of the last call.
   void contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                             std::vector<LeafContact>& out);
+  /// distance() from the kept near pairs: true when `best` (found: already a
+  /// candidate) is the distance at o_from_t, which they cover.
+  bool distanceNear(const Rigid& o_from_t, double max_distance, LeafContact& best, bool& found);
   /// contactsNear()'s pairs at o_from_t, none farther than `threshold`, into `out`.
   void evaluateNear(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
   /// near_.mutablePairs() (sorted, measured at `pose`) become the pairs within `reach`

@@ -459,6 +459,45 @@ TEST_F(GroupPairQueryTest, ContactsNearRebuiltFromTheFrontEqualTraversalsFromThe
               steps, with_contacts, near.frontRebuilds());
 }
 
+// A proxy just out of contact: distance() answers from the pairs contactsNear()
+// keeps when they cover the pose, and equals a fresh query's distance, in contact or
+// not, covered or not.
+TEST_F(GroupPairQueryTest, DistanceFromTheNearPairsEqualsAFreshQuery) {
+  GroupPairQuery near;
+  near.bind(target_, opponent_);
+  test::Rng rng(59);
+  const double threshold = 0.01, margin = 0.02;
+  int steps = 0, from_pairs = 0, apart = 0, apart_from_pairs = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 6); ++run) {
+    Rigid pose = randomPose(rng, 0.5);
+    const Vec3 drift = 0.003 * test::randomDirection(rng);
+    for (int k = 0; k < 40; ++k, ++steps) {
+      SCOPED_TRACE(k);
+      pose.translation += drift;
+      std::vector<LeafContact> contacts;
+      near.contactsNear(pose, threshold, margin, contacts);
+      const Rigid moved{pose.rotation, pose.translation + 0.002 * test::randomDirection(rng)};
+      GroupPairQuery fresh;
+      fresh.bind(target_, opponent_);
+      LeafContact got, want;
+      const bool found = near.distance(moved, kInfinity, got);
+      ASSERT_EQ(found, fresh.distance(moved, kInfinity, want));
+      EXPECT_NEAR(got.gap, want.gap, 1e-12 * (1.0 + want.gap));
+      EXPECT_EQ(got.intersecting, want.intersecting);
+      const bool untraversed = near.counters().node_pairs == 0 && near.counters().leaf_gjk > 0;
+      from_pairs += untraversed;
+      apart += !want.intersecting;
+      apart_from_pairs += untraversed && !want.intersecting;
+    }
+  }
+  EXPECT_GT(from_pairs, steps / 10);
+  EXPECT_GT(apart_from_pairs, 5);
+  std::printf(
+      "[ group pair query ] %d distances, %d from the near pairs; %d apart, %d of them "
+      "from the near pairs\n",
+      steps, from_pairs, apart, apart_from_pairs);
+}
+
 // Warm state after jumps of every size (beyond the kept pairs' reach, up to a
 // teleport): the carried query answers what a fresh one answers at that pose, for
 // the distance, the contacts near and a time of impact, and the kept pairs it no

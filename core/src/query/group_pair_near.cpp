@@ -9,6 +9,12 @@
 
 namespace sc::detail {
 
+namespace {
+/// Kept pairs gathered for more than this many times the reach a call needs are
+/// rebuilt, ahead of need, at that reach.
+constexpr double kOversizedReach = 4.0;
+}  // namespace
+
 double GroupPairQuery::nearCoveredReach(const Rigid& o_from_t) const {
   // The last distance bounds every pair from below: an answer is complete up to that
   // too (an empty one from contactsNear's shortcut, in particular).
@@ -56,9 +62,15 @@ void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshol
   } else {
     evaluateNear(o_from_t, threshold, out);
     // A third of the slack used: the next rebuild starts here, spread over the calls
-    // while the rest lasts.
+    // while the rest lasts. So does one for a set gathered for a far larger reach than
+    // the calls now ask (a long advancement's), whose every pair each call would scan.
+    // A rebuild run ahead for such a reach (one that hit the cap, kMaxContacts, never
+    // finishes) gives way to one at the reach needed.
     const double slack = near_.reach() - threshold;
-    if (!near_.pending().active && displacementBound(near_.pose(), o_from_t) > slack / 3.0)
+    const double oversized = kOversizedReach * (threshold + margin);
+    const NearPairs::Pending& pending = near_.pending();
+    if ((!pending.active || pending.reach > oversized) &&
+        (near_.reach() > oversized || displacementBound(near_.pose(), o_from_t) > slack / 3.0))
       startPendingNear(o_from_t, threshold + margin);
   }
   counters_.ahead_node_pairs = ahead.node_pairs;

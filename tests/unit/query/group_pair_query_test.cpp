@@ -459,6 +459,34 @@ TEST_F(GroupPairQueryTest, ContactsNearRebuiltFromTheFrontEqualTraversalsFromThe
               steps, with_contacts, near.frontRebuilds());
 }
 
+// One call with a far larger threshold (a long advancement) gathers a large set;
+// the calls after it, with a small threshold, rebuild it at their own reach instead of
+// scanning it on every call, and answer as full traversals throughout.
+TEST_F(GroupPairQueryTest, ContactsNearGivesUpASetGatheredForAFarLargerReach) {
+  GroupPairQuery near, plain;
+  near.bind(target_, opponent_);
+  plain.bind(target_, opponent_);
+  test::Rng rng(61);
+  const double threshold = 0.002, margin = 0.004, large = 0.1;
+  int replaced = 0, runs = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run, ++runs) {
+    Rigid pose = randomPose(rng, 0.5);
+    std::vector<LeafContact> got, want;
+    near.contactsNear(pose, large, margin, got);
+    const Vec3 drift = 0.0005 * test::randomDirection(rng);
+    for (int k = 0; k < 40; ++k) {
+      SCOPED_TRACE(k);
+      pose.translation += drift;
+      near.contactsNear(pose, threshold, margin, got);
+      plain.contacts(pose, threshold, want);
+      ASSERT_EQ(got.size(), want.size());
+    }
+    // Kept at the large reach, the set would still cover 0.08 here.
+    if (near.nearCoveredReach(pose) <= 4.0 * (threshold + margin)) ++replaced;
+  }
+  EXPECT_EQ(replaced, runs);
+}
+
 // A proxy just out of contact: distance() answers from the pairs contactsNear()
 // keeps when they cover the pose, and equals a fresh query's distance, in contact or
 // not, covered or not.

@@ -28,6 +28,14 @@ inline Placement startState() {
   return p;
 }
 
+/// Orientation `q` about the local origin, placed with that origin at `center`.
+inline Placement placementOf(const Quat& q, const Vec3& center) {
+  Placement p;
+  p.orientation = q;
+  p.world_center = center;
+  return p;
+}
+
 /// q and -q are the same rotation.
 inline double quatDistance(const Quat& a, const Quat& b) {
   return std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());

@@ -293,10 +293,10 @@ struct Scene::Impl {
   void treeCandidates() {
     const double max_distance = settings.max_distance;
     for (const detail::HandlePair& p : tree.pairs(max_distance)) {
-      const GroupRec& a = *slots[tree.user(p.a)];
-      const GroupRec& b = *slots[tree.user(p.b)];
+      const GroupRec& a = *slots[tree.user(p.lo)];
+      const GroupRec& b = *slots[tree.user(p.hi)];
       if (!a.seeker && !b.seeker) continue;
-      if (boxDistance(tree.box(p.a), tree.box(p.b)) > max_distance) continue;
+      if (boxDistance(tree.box(p.lo), tree.box(p.hi)) > max_distance) continue;
       candidates.push_back(candidateOf(a, b));
     }
   }

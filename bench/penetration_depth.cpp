@@ -29,7 +29,7 @@
 #include "smartcollision/smartcollision.h"
 
 #if SC_BENCH_HAVE_CCD
-#include <ccd/ccd.h>
+#include "ccd_problem.h"
 #endif
 #if SC_BENCH_HAVE_BULLET
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
@@ -553,12 +553,7 @@ void BM_CcdConvex(benchmark::State& state) {
   row.tolerance = std::pow(10.0, -static_cast<double>(state.range(2)));
   row.parameters =
       std::string(mpr ? "mpr_tolerance=" : "epa_tolerance=") + std::to_string(row.tolerance);
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = ccdSupport;
-  ccd.support2 = ccdSupport;
-  ccd.center1 = ccdCenter;
-  ccd.center2 = ccdCenter;
+  ccd_t ccd = sc_bench::ccdProblem(ccdSupport, ccdCenter);
   ccd.max_iterations = 1000;
   if (mpr)
     ccd.mpr_tolerance = row.tolerance;
@@ -825,12 +820,7 @@ double oursGlobal(const GlobalSet& set, const GlobalCase& c, double& depth) {
 
 #if SC_BENCH_HAVE_CCD
 double ccdGlobal(const GlobalSet& set, const GlobalCase& c, double& depth, bool mpr) {
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = ccdSupport;
-  ccd.support2 = ccdSupport;
-  ccd.center1 = ccdCenter;
-  ccd.center2 = ccdCenter;
+  ccd_t ccd = sc_bench::ccdProblem(ccdSupport, ccdCenter);
   ccd.max_iterations = 1000;
   ccd.mpr_tolerance = 1e-8;
   ccd.epa_tolerance = 1e-8;

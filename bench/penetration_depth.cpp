@@ -24,6 +24,7 @@
 
 #include "harness.h"
 #include "meshes.h"
+#include "pair_queries.h"
 #include "sc_support/csv.h"
 #include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
@@ -45,25 +46,8 @@ using sc::support::randomDirection;
 using sc::support::randomRotation;
 using sc_bench::Clock;
 
-sc::ModelPtr closedModel(const sc::MeshData& mesh) {
-  auto piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, mesh);
-  if (!piece.hasValue()) {
-    std::fprintf(stderr, "bench: mesh rejected: %s\n", piece.status().message().c_str());
-    return nullptr;
-  }
-  return std::make_shared<const sc::Model>(sc::ModelKind::ClosedPolyhedron,
-                                           std::vector<sc::PiecePtr>{piece.value()});
-}
-
-sc::DirectedResult updateOneWay(sc::PairTracker& tracker, const sc::Part& target_part,
-                                const sc::Placement& target, const sc::Part& opponent_part,
-                                const sc::Placement& opponent, const sc::SceneSettings& settings) {
-  const sc::GroupView a{&target_part, 1, target};
-  const sc::GroupView b{&opponent_part, 1, opponent};
-  sc::DirectedResult out[2];
-  tracker.update(a, b, sc::Directions{true, false}, settings, out);
-  return out[0];
-}
+using sc_bench::closedModel;
+using sc_bench::updateOneWay;
 
 // ---------------------------------------------------------------------------------
 // Haptic-like motion between two large meshes.

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/bullet_world.h"
 #include "../common/cli.h"
 #include "../common/viewer.h"
 #include "sc_support/off_mesh.h"
@@ -78,16 +79,9 @@ class Demo {
     sc::bullet::PluginSettings settings;
     settings.model = options_.model;
     settings.query.rotation_mode = options_.rotation;
-    auto plugin = sc::bullet::registerSmartCollision(dispatcher_.get(), settings);
-    if (!plugin.ok()) {
-      std::fprintf(stderr, "registerSmartCollision: %s\n", plugin.status().message().c_str());
-      std::exit(1);
-    }
-    broadphase_ = std::make_unique<btDbvtBroadphase>();
-    solver_ = std::make_unique<sc::bullet::StackingSolver>();  // the mass-ratio scene stands at 60 Hz
-    world_ = std::make_unique<sc::bullet::ScDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
-                                                           config_.get(), plugin.value());
-    world_->setGravity(btVector3(0, -9.81f, 0));
+    // StackingSolver: the mass-ratio scene stands at 60 Hz.
+    bullet_.makeSmartCollision(settings, std::make_unique<sc::bullet::StackingSolver>());
+    bullet_.world->setGravity(btVector3(0, -9.81f, 0));
     ground_shape_ = std::make_unique<btBoxShape>(btVector3(10, 1, 10));
     ground_mesh_ = drawMeshOf(*makeShape(boxMesh(1.0)));  // drawn scaled below
     addRigid(ground_shape_.get(), 0.0, btVector3(0, -1, 0));
@@ -115,10 +109,10 @@ class Demo {
 
   void step() {
     const auto t0 = std::chrono::steady_clock::now();
-    world_->stepSimulation(btScalar(1.0 / options_.hz), 1, btScalar(1.0 / options_.hz));
+    bullet_.world->stepSimulation(btScalar(1.0 / options_.hz), 1, btScalar(1.0 / options_.hz));
     step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++steps_;
-    max_depth_ = std::max(max_depth_, world_->plugin().stats().max_depth);
+    max_depth_ = std::max(max_depth_, bullet_.world->plugin().stats().max_depth);
     trackSoakMetrics();
     const Body& top = bodies_.back();
     const btVector3 d = top.body->getCenterOfMassPosition() - top.start;
@@ -147,7 +141,7 @@ class Demo {
 
   void toggleModel() {
     options_.model = options_.model == ContactModel::Potential ? ContactModel::Manifold : ContactModel::Potential;
-    world_->plugin().setContactModel(options_.model);
+    bullet_.world->plugin().setContactModel(options_.model);
   }
   void setScene(const std::string& s) {
     options_.scene = s;
@@ -248,7 +242,7 @@ class Demo {
     rigid_.push_back(std::make_unique<btRigidBody>(ci));
     btRigidBody* b = rigid_.back().get();
     b->setActivationState(DISABLE_DEACTIVATION);  // metrics see the contact model, not sleep
-    world_->addRigidBody(b);
+    bullet_.world->addRigidBody(b);
     return b;
   }
 
@@ -361,17 +355,13 @@ class Demo {
   }
 
   void clear() {
-    if (world_)
-      for (auto& b : rigid_) world_->removeRigidBody(b.get());
+    if (bullet_.world)
+      for (auto& b : rigid_) bullet_.world->removeRigidBody(b.get());
     rigid_.clear();
     bodies_.clear();
     walls_.clear();
     base_ = Body();
-    world_.reset();
-    solver_.reset();
-    broadphase_.reset();
-    dispatcher_.reset();
-    config_.reset();
+    bullet_.reset();
     mesh_draw_.clear();
     wall_draw_.clear();
     wall_shapes_.clear();
@@ -381,11 +371,7 @@ class Demo {
   }
 
   Options options_;
-  std::unique_ptr<btDefaultCollisionConfiguration> config_;
-  std::unique_ptr<btCollisionDispatcher> dispatcher_;
-  std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-  std::unique_ptr<sc::bullet::ScDynamicsWorld> world_;
+  sc::demo::BulletWorld<sc::bullet::ScDynamicsWorld> bullet_;
   std::unique_ptr<btBoxShape> ground_shape_;
   std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> shapes_;
   std::shared_ptr<sc::bullet::ScBulletShape> box_;

@@ -74,8 +74,6 @@ class Demo {
 
   void build() {
     clear();
-    config_ = std::make_unique<btDefaultCollisionConfiguration>(sc::bullet::collisionConstructionInfo());
-    dispatcher_ = std::make_unique<btCollisionDispatcher>(config_.get());
     sc::bullet::PluginSettings settings;
     settings.model = options_.model;
     settings.query.rotation_mode = options_.rotation;
@@ -149,19 +147,15 @@ class Demo {
   }
 
   void collect(std::vector<sc::demo::DrawItem>& items) const {
-    sc::demo::DrawItem ground;
-    ground.mesh = &ground_mesh_;
     btTransform t(btQuaternion::getIdentity(), btVector3(0, -0.5f, 0));
     btScalar m[16];
     t.getOpenGLMatrix(m);
-    for (int i = 0; i < 16; ++i) ground.matrix[i] = float(m[i]);
+    const float ground_color[3] = {0.55f, 0.6f, 0.65f};
+    sc::demo::DrawItem ground = sc::demo::drawItem(&ground_mesh_, m, ground_color);
     // the ground mesh is a 2 m cube: stretch it to 20 x 1 x 20 m
     ground.matrix[0] = 10;
     ground.matrix[5] = 0.5f;
     ground.matrix[10] = 10;
-    ground.color[0] = 0.55f;
-    ground.color[1] = 0.6f;
-    ground.color[2] = 0.65f;
     items.push_back(ground);
     std::vector<const Body*> drawn;
     if (base_.body != nullptr) drawn.push_back(&base_);
@@ -169,26 +163,22 @@ class Demo {
     for (const Body& b : bodies_) drawn.push_back(&b);
     for (const Body* bp : drawn) {
       const Body& b = *bp;
-      sc::demo::DrawItem item;
-      item.mesh = b.mesh;
       b.body->getWorldTransform().getOpenGLMatrix(m);
-      for (int i = 0; i < 16; ++i) item.matrix[i] = float(m[i]);
+      sc::demo::DrawItem item = sc::demo::drawItem(b.mesh, m, b.color);
       for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 4; ++r) item.matrix[4 * c + r] *= float(b.scale[c]);
-      std::memcpy(item.color, b.color, sizeof(item.color));
       items.push_back(item);
     }
   }
 
   std::string overlay() const {
-    char buf[512];
-    std::snprintf(buf, sizeof(buf),
-                  "scene %s (1 tower, 2 pyramid, 3 mass ratio, 4 meshes, 5 pile; r reset)\n"
-                  "model %s (m switches)   t = %.2f s   %.3f ms/step\n"
-                  "top drift %.4f m   max penetration %.4f m",
-                  options_.scene.c_str(), options_.model == ContactModel::Potential ? "potential" : "manifold",
-                  steps_ / options_.hz, steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, max_drift_, max_depth_);
-    return buf;
+    return sc::demo::overlayText(
+        "scene %s (1 tower, 2 pyramid, 3 mass ratio, 4 meshes, 5 pile; r reset)\n"
+        "model %s (m switches)   t = %.2f s   %.3f ms/step\n"
+        "top drift %.4f m   max penetration %.4f m",
+        options_.scene.c_str(),
+        options_.model == ContactModel::Potential ? "potential" : "manifold", steps_ / options_.hz,
+        steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, max_drift_, max_depth_);
   }
 
   double energy() const {

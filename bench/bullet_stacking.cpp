@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "../demos/common/bullet_world.h"
 #include "bullet_shapes.h"
 #include "meshes.h"
 #include "sc_support/sample_meshes.h"
@@ -73,33 +74,18 @@ sc::MeshData boxMesh(double h) {
 /// Bullet's usual objects for one contact model: the plugin's world for ours, a plain
 /// btDiscreteDynamicsWorld (GImpact registered) for Bullet's; the same solver
 /// settings for all, so that only the contacts differ.
-struct World {
+struct World : sc::demo::BulletWorld<> {
   World(Model m, double step, double ground_top, const sc::bullet::ContactSettings& contact = {})
       : model(m), dt(step) {
     const bool ours = m == Model::Potential || m == Model::Manifold;
-    config = ours ? std::make_unique<btDefaultCollisionConfiguration>(
-                        sc::bullet::collisionConstructionInfo())
-                  : std::make_unique<btDefaultCollisionConfiguration>();
-    dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
-    broadphase = std::make_unique<btDbvtBroadphase>();
-    solver = std::make_unique<btSequentialImpulseConstraintSolver>();
     if (ours) {
       sc::bullet::PluginSettings settings;
       settings.model = m == Model::Potential ? sc::bullet::ContactModel::Potential
                                              : sc::bullet::ContactModel::Manifold;
       settings.contact = contact;
-      auto plugin = sc::bullet::registerSmartCollision(dispatcher.get(), settings);
-      if (!plugin.ok()) {
-        std::fprintf(stderr, "bench: %s\n", plugin.status().message().c_str());
-        std::exit(1);
-      }
-      world = std::make_unique<sc::bullet::ScDynamicsWorld>(
-          dispatcher.get(), broadphase.get(), solver.get(), config.get(), plugin.value());
+      makeSmartCollision(settings);
     } else {
-      btGImpactCollisionAlgorithm::registerAlgorithm(dispatcher.get());
-      world = std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), broadphase.get(),
-                                                        solver.get(), config.get());
-      sc::bullet::useStackingSolverSettings(world->getSolverInfo());
+      makeGImpact(false);
     }
     world->setGravity(btVector3(0, btScalar(kGravity), 0));
     addBody(ground_shape.get(), 0, btVector3(0, 0, 0),
@@ -127,11 +113,6 @@ struct World {
   Model model;
   double dt;
   std::unique_ptr<btBoxShape> ground_shape = std::make_unique<btBoxShape>(btVector3(50, 1, 50));
-  std::unique_ptr<btDefaultCollisionConfiguration> config;
-  std::unique_ptr<btCollisionDispatcher> dispatcher;
-  std::unique_ptr<btBroadphaseInterface> broadphase;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver;
-  std::unique_ptr<btDiscreteDynamicsWorld> world;
   std::vector<std::unique_ptr<btRigidBody>> bodies;  ///< [0] is the ground
   std::vector<btRigidBody*> dynamic;                 ///< in the scene's spawn order
 };

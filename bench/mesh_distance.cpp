@@ -21,6 +21,7 @@
 
 #include "harness.h"
 #include "meshes.h"
+#include "pair_queries.h"
 #include "sc_support/csv.h"
 #include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
@@ -79,14 +80,10 @@ const Loaded* load(const std::string& name) {
   if (!raw.triangles.empty()) {
     l = std::make_unique<Loaded>();
     l->mesh = sc::support::fitToSize(std::move(raw), 1.0);
-    auto piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, l->mesh);
-    if (!piece.hasValue()) {
-      std::fprintf(stderr, "bench: %s rejected: %s\n", name.c_str(),
-                   piece.status().message().c_str());
+    l->model = sc_bench::closedModel(l->mesh, name);
+    if (!l->model) {
       l.reset();
     } else {
-      l->model = std::make_shared<const sc::Model>(sc::ModelKind::ClosedPolyhedron,
-                                                   std::vector<sc::PiecePtr>{piece.value()});
       for (const Vec3& v : l->mesh.vertices) l->radius = std::max(l->radius, v.norm());
 #if SC_BENCH_HAVE_FCL
       l->fcl_model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
@@ -116,12 +113,9 @@ struct Pair {
         part_b{lb->model.get(), sc::Rigid(), 1} {}
 
   sc::DirectedResult query(sc::PairTracker& tracker, const sc::Rigid& pose) const {
-    sc::GroupView target{&part_a, 1, sc::Placement()};
-    target.placement.setMatrix(pose.rotation, pose.translation);
-    const sc::GroupView opponent{&part_b, 1, sc::Placement()};
-    sc::DirectedResult out[2];
-    tracker.update(target, opponent, sc::Directions{true, false}, settings, out);
-    return out[0];
+    sc::Placement target;
+    target.setMatrix(pose.rotation, pose.translation);
+    return sc_bench::updateOneWay(tracker, part_a, target, part_b, sc::Placement(), settings);
   }
 
   /// The result from a fresh state: not Ok (or <= 0) when intersecting.

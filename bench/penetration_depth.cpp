@@ -24,12 +24,13 @@
 
 #include "harness.h"
 #include "meshes.h"
+#include "pair_queries.h"
 #include "sc_support/csv.h"
 #include "sc_support/stats.h"
 #include "smartcollision/smartcollision.h"
 
 #if SC_BENCH_HAVE_CCD
-#include <ccd/ccd.h>
+#include "ccd_problem.h"
 #endif
 #if SC_BENCH_HAVE_BULLET
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
@@ -45,25 +46,8 @@ using sc::support::randomDirection;
 using sc::support::randomRotation;
 using sc_bench::Clock;
 
-sc::ModelPtr closedModel(const sc::MeshData& mesh) {
-  auto piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, mesh);
-  if (!piece.hasValue()) {
-    std::fprintf(stderr, "bench: mesh rejected: %s\n", piece.status().message().c_str());
-    return nullptr;
-  }
-  return std::make_shared<const sc::Model>(sc::ModelKind::ClosedPolyhedron,
-                                           std::vector<sc::PiecePtr>{piece.value()});
-}
-
-sc::DirectedResult updateOneWay(sc::PairTracker& tracker, const sc::Part& target_part,
-                                const sc::Placement& target, const sc::Part& opponent_part,
-                                const sc::Placement& opponent, const sc::SceneSettings& settings) {
-  const sc::GroupView a{&target_part, 1, target};
-  const sc::GroupView b{&opponent_part, 1, opponent};
-  sc::DirectedResult out[2];
-  tracker.update(a, b, sc::Directions{true, false}, settings, out);
-  return out[0];
-}
+using sc_bench::closedModel;
+using sc_bench::updateOneWay;
 
 // ---------------------------------------------------------------------------------
 // Haptic-like motion between two large meshes.
@@ -553,12 +537,7 @@ void BM_CcdConvex(benchmark::State& state) {
   row.tolerance = std::pow(10.0, -static_cast<double>(state.range(2)));
   row.parameters =
       std::string(mpr ? "mpr_tolerance=" : "epa_tolerance=") + std::to_string(row.tolerance);
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = ccdSupport;
-  ccd.support2 = ccdSupport;
-  ccd.center1 = ccdCenter;
-  ccd.center2 = ccdCenter;
+  ccd_t ccd = sc_bench::ccdProblem(ccdSupport, ccdCenter);
   ccd.max_iterations = 1000;
   if (mpr)
     ccd.mpr_tolerance = row.tolerance;
@@ -825,12 +804,7 @@ double oursGlobal(const GlobalSet& set, const GlobalCase& c, double& depth) {
 
 #if SC_BENCH_HAVE_CCD
 double ccdGlobal(const GlobalSet& set, const GlobalCase& c, double& depth, bool mpr) {
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = ccdSupport;
-  ccd.support2 = ccdSupport;
-  ccd.center1 = ccdCenter;
-  ccd.center2 = ccdCenter;
+  ccd_t ccd = sc_bench::ccdProblem(ccdSupport, ccdCenter);
   ccd.max_iterations = 1000;
   ccd.mpr_tolerance = 1e-8;
   ccd.epa_tolerance = 1e-8;

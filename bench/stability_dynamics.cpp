@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "../demos/common/bullet_world.h"
 #include "smartcollision/bullet/bullet.h"
 #include "stability_pairs.h"
 
@@ -44,32 +45,16 @@ bool isSc(Kind k) { return k == Kind::Potential || k == Kind::Manifold; }
 btVector3 bt(const Vec3& v) { return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())); }
 
 /// A Bullet world of one kind; owns everything Bullet keeps pointers to.
-struct World {
+struct World : sc::demo::BulletWorld<> {
   World(Kind k, double hz, double gravity, double stiffness = 0.0) : kind(k), dt(1.0 / hz) {
-    btDefaultCollisionConstructionInfo info = sc::bullet::collisionConstructionInfo();
-    config = std::make_unique<btDefaultCollisionConfiguration>(info);
-    dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
-    broadphase = std::make_unique<btDbvtBroadphase>();
-    solver = std::make_unique<btSequentialImpulseConstraintSolver>();
     if (isSc(k)) {
       sc::bullet::PluginSettings settings;
       settings.model = k == Kind::Potential ? sc::bullet::ContactModel::Potential
                                                : sc::bullet::ContactModel::Manifold;
       settings.contact.contact_stiffness = stiffness;
-      auto p = sc::bullet::registerSmartCollision(dispatcher.get(), settings);
-      if (!p.ok()) {
-        std::fprintf(stderr, "plugin: %s\n", p.status().message().c_str());
-        std::exit(1);
-      }
-      plugin = p.value();
-      world = std::make_unique<sc::bullet::ScDynamicsWorld>(dispatcher.get(), broadphase.get(),
-                                                            solver.get(), config.get(), plugin);
+      makeSmartCollision(settings);
     } else {
-      btGImpactCollisionAlgorithm::registerAlgorithm(dispatcher.get());
-      world = std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), broadphase.get(),
-                                                        solver.get(), config.get());
-      // The same solver settings as the plugin's world: only collision differs.
-      sc::bullet::useStackingSolverSettings(world->getSolverInfo());
+      makeGImpact(true);
     }
     world->setGravity(btVector3(0, btScalar(gravity), 0));
   }
@@ -119,12 +104,6 @@ struct World {
 
   Kind kind;
   double dt;
-  std::unique_ptr<btDefaultCollisionConfiguration> config;
-  std::unique_ptr<btCollisionDispatcher> dispatcher;
-  std::unique_ptr<btBroadphaseInterface> broadphase;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver;
-  std::shared_ptr<sc::bullet::Plugin> plugin;
-  std::unique_ptr<btDiscreteDynamicsWorld> world;
   std::vector<std::shared_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<std::unique_ptr<btTriangleMesh>> meshes;

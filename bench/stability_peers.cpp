@@ -10,12 +10,13 @@
 #include <cstring>
 #include <exception>
 #include <functional>
+#include <utility>
 
 #if SC_BENCH_HAVE_FCL
 #include <fcl/fcl.h>
 #endif
 #if SC_BENCH_HAVE_CCD
-#include <ccd/ccd.h>
+#include "ccd_problem.h"
 #endif
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
@@ -95,12 +96,7 @@ void ccdCentre(const void* obj, ccd_vec3_t* out) {
 /// libccd with its defaults (first direction, tolerances) as a user would call it.
 PeerOut ccdQuery(const Box& a, const Box& b, bool mpr) {
   return isolated([&] {
-    ccd_t ccd;
-    CCD_INIT(&ccd);
-    ccd.support1 = ccdSupport;
-    ccd.support2 = ccdSupport;
-    ccd.center1 = ccdCentre;
-    ccd.center2 = ccdCentre;
+    ccd_t ccd = sc_bench::ccdProblem(ccdSupport, ccdCentre);
     ccd_real_t depth = 0;
     ccd_vec3_t dir, pos;
     const int r = mpr ? ccdMPRPenetration(&a, &b, &ccd, &depth, &dir, &pos)
@@ -116,8 +112,9 @@ PeerOut ccdQuery(const Box& a, const Box& b, bool mpr) {
 
 }  // namespace
 
-PeerOut fclSignedDistance(const Box& a, const Box& b) {
+// Without a peer library at build time its queries report Missing.
 #if SC_BENCH_HAVE_FCL
+PeerOut fclSignedDistance(const Box& a, const Box& b) {
   return isolated([&] {
     const fcl::Boxd ga(2 * a.half), gb(2 * b.half);
     fcl::DistanceRequestd request;
@@ -129,14 +126,9 @@ PeerOut fclSignedDistance(const Box& a, const Box& b) {
     const double d = result.min_distance;
     return d < 0 ? PeerOut{PeerStatus::Penetrating, -d, ""} : PeerOut{PeerStatus::Apart, -d, ""};
   });
-#else
-  (void)a, (void)b;
-  return {};
-#endif
 }
 
 PeerOut fclCollide(const Box& a, const Box& b) {
-#if SC_BENCH_HAVE_FCL
   return isolated([&] {
     const fcl::Boxd ga(2 * a.half), gb(2 * b.half);
     fcl::CollisionRequestd request(1, true);
@@ -146,29 +138,19 @@ PeerOut fclCollide(const Box& a, const Box& b) {
     if (!result.isCollision()) return PeerOut{PeerStatus::Apart, 0.0, "reports no collision"};
     return PeerOut{PeerStatus::Penetrating, result.getContact(0).penetration_depth, ""};
   });
-#else
-  (void)a, (void)b;
-  return {};
-#endif
 }
+#else
+PeerOut fclSignedDistance(const Box&, const Box&) { return {}; }
+PeerOut fclCollide(const Box&, const Box&) { return {}; }
+#endif
 
-PeerOut ccdEpa(const Box& a, const Box& b) {
 #if SC_BENCH_HAVE_CCD
-  return ccdQuery(a, b, false);
+PeerOut ccdEpa(const Box& a, const Box& b) { return ccdQuery(a, b, false); }
+PeerOut ccdMpr(const Box& a, const Box& b) { return ccdQuery(a, b, true); }
 #else
-  (void)a, (void)b;
-  return {};
+PeerOut ccdEpa(const Box&, const Box&) { return {}; }
+PeerOut ccdMpr(const Box&, const Box&) { return {}; }
 #endif
-}
-
-PeerOut ccdMpr(const Box& a, const Box& b) {
-#if SC_BENCH_HAVE_CCD
-  return ccdQuery(a, b, true);
-#else
-  (void)a, (void)b;
-  return {};
-#endif
-}
 
 PeerOut bulletGjkEpa(const Box& a, const Box& b) {
   return isolated([&] {
@@ -204,23 +186,16 @@ PeerOut bulletGjkEpa(const Box& a, const Box& b) {
 Cell peerCell(const std::string& row, const std::string& column, const PeerOut& out,
               double truth) {
   Cell c{row, column, "", std::nan(""), std::nan(""), oneLine(out.message)};
-  switch (out.status) {
-    case PeerStatus::Missing:
-      c.outcome = "n/a";
-      c.note = "library not found at build time";
-      return c;
-    case PeerStatus::Exception:
-      c.outcome = "exception";
-      return c;
-    case PeerStatus::Crash:
-      c.outcome = "crash";
-      return c;
-    case PeerStatus::Hang:
-      c.outcome = "hang";
-      return c;
-    case PeerStatus::Penetrating:
-    case PeerStatus::Apart:
-      break;
+  // A peer that gave no answer: its outcome only.
+  constexpr std::pair<PeerStatus, const char*> kNoAnswer[] = {{PeerStatus::Missing, "n/a"},
+                                                              {PeerStatus::Exception, "exception"},
+                                                              {PeerStatus::Crash, "crash"},
+                                                              {PeerStatus::Hang, "hang"}};
+  for (const auto& [status, outcome] : kNoAnswer) {
+    if (out.status != status) continue;
+    c.outcome = outcome;
+    if (status == PeerStatus::Missing) c.note = "library not found at build time";
+    return c;
   }
   c.value = out.status == PeerStatus::Penetrating ? out.depth : std::max(0.0, out.depth);
   if (!std::isfinite(c.value)) {

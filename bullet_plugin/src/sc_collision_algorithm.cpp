@@ -439,13 +439,10 @@ ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructio
                                            const btCollisionObjectWrapper* body0,
                                            const btCollisionObjectWrapper* body1, Plugin* plugin,
                                            bool closest_points)
-    : btActivatingCollisionAlgorithm(ci, body0, body1),
-      plugin_(plugin),
+    : AlgorithmBase(ci, body0, body1, plugin, closest_points),
       objects_{body0->getCollisionObject(), body1->getCollisionObject()},
       models_{modelOf(*plugin, body0->getCollisionShape()),
-              modelOf(*plugin, body1->getCollisionShape())},
-      closest_points_(closest_points) {
-  if (closest_points_) manifold_ = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
+              modelOf(*plugin, body1->getCollisionShape())} {
   const btCollisionObjectWrapper* wraps[2] = {body0, body1};
   for (int i = 0; i < 2; ++i) {
     if (!models_[i]) continue;
@@ -493,7 +490,6 @@ void ScCollisionAlgorithm::rememberQuery(const btCollisionObjectWrapper* const w
 }
 
 ScCollisionAlgorithm::~ScCollisionAlgorithm() {
-  if (manifold_ != nullptr) m_dispatcher->releaseManifold(manifold_);
   for (btPersistentManifold* m : manifolds_)
     if (m != nullptr) m_dispatcher->releaseManifold(m);
 }

@@ -3,18 +3,15 @@
 // pair's sc::PairTracker and turns its results into impulses or manifold points.
 #pragma once
 
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
-#include <btBulletCollisionCommon.h>
-
 #include <vector>
 
+#include "algorithm_base.h"
 #include "smartcollision/bullet/step_stats.h"
 #include "smartcollision/collision.h"
 #include "smartcollision/model.h"
 
 namespace sc::bullet {
 
-class Plugin;
 namespace detail {
 struct RowPoint;
 struct WorldPlane;
@@ -22,10 +19,8 @@ struct RowCandidate;
 struct ContactCluster;
 }  // namespace detail
 
-class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
+class ScCollisionAlgorithm : public AlgorithmBase {
  public:
-  /// `closest_points`: created for contactTest / closest-point queries: report points
-  /// to the result, never impulses, no owned manifold.
   ScCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
                        const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                        Plugin* plugin, bool closest_points);
@@ -34,18 +29,12 @@ class ScCollisionAlgorithm : public btActivatingCollisionAlgorithm {
   void processCollision(const btCollisionObjectWrapper* body0,
                         const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                         btManifoldResult* result) override;
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return btScalar(1);
-  }
+  /// The patches' manifolds (manifold_ is for closest-point queries only).
   void getAllContactManifolds(btManifoldArray& manifolds) override;
 
  private:
-  Plugin* plugin_;
   const btCollisionObject* objects_[2];
   ModelPtr models_[2];  ///< per side; null: a shape the algorithm cannot take (ignored)
-  btPersistentManifold* manifold_ = nullptr;  ///< closest-point queries only
-  bool closest_points_;
   /// One manifold per contact patch (detail::buildClusters), so that each patch keeps
   /// its rows from step to step; null until a patch needs it.
   static constexpr int kManifolds = 4;

@@ -9,8 +9,8 @@
 
 #include "contact_response.h"
 #include "smartcollision/bullet/plugin.h"
-#include "step_buffer.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
+#include "step_buffer.h"
 
 namespace sc::bullet {
 
@@ -76,34 +76,11 @@ void cornerPoints(const WorldPlane& plane, const btTransform& t, const std::vect
 
 }  // namespace
 
-ScPlaneAlgorithm::ScPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                                   const btCollisionObjectWrapper* body0,
-                                   const btCollisionObjectWrapper* body1, Plugin* plugin,
-                                   bool closest_points)
-    : btActivatingCollisionAlgorithm(ci, body0, body1),
-      plugin_(plugin),
-      shape_object_(body0->getCollisionShape()->getShapeType() == kShapeType
-                        ? body0->getCollisionObject()
-                        : body1->getCollisionObject()),
-      closest_points_(closest_points) {
-  if (closest_points_)
-    manifold_ =
-        m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
-}
-
-ScPlaneAlgorithm::~ScPlaneAlgorithm() {
-  if (manifold_ != nullptr) m_dispatcher->releaseManifold(manifold_);
-}
-
-void ScPlaneAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  if (manifold_ != nullptr && !closest_points_) manifolds.push_back(manifold_);
-}
-
 void ScPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                         const btCollisionObjectWrapper* body1,
                                         const btDispatcherInfo& info, btManifoldResult* result) {
-  const int dir =
-      body0->getCollisionObject() == shape_object_ ? 0 : 1;  // result's body of the shape
+  // The result's body of the shape (the other is the plane).
+  const int dir = body0->getCollisionShape()->getShapeType() == kShapeType ? 0 : 1;
   const btCollisionObjectWrapper* shape_w = dir == 0 ? body0 : body1;
   const btCollisionObjectWrapper* plane_w = dir == 0 ? body1 : body0;
   const auto* shape = static_cast<const ScBulletShape*>(shape_w->getCollisionShape());

@@ -4,40 +4,22 @@
 // point's, along the plane's normal, and only the shape's hull corners can be deepest.
 #pragma once
 
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
-#include <btBulletCollisionCommon.h>
-
 #include <vector>
+
+#include "algorithm_base.h"
+#include "contact_response.h"
 
 namespace sc::bullet {
 
-class Plugin;
-namespace detail {
-struct RowPoint;
-}
-
-class ScPlaneAlgorithm : public btActivatingCollisionAlgorithm {
+class ScPlaneAlgorithm : public AlgorithmBase {
  public:
-  /// `closest_points`: for contactTest / closest-point queries (points, no impulses).
-  ScPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                   const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
-                   Plugin* plugin, bool closest_points);
-  ~ScPlaneAlgorithm() override;
+  using AlgorithmBase::AlgorithmBase;
 
   void processCollision(const btCollisionObjectWrapper* body0,
                         const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                         btManifoldResult* result) override;
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return btScalar(1);
-  }
-  void getAllContactManifolds(btManifoldArray& manifolds) override;
 
  private:
-  Plugin* plugin_;
-  const btCollisionObject* shape_object_;  ///< the ScBulletShape side
-  btPersistentManifold* manifold_ = nullptr;
-  bool closest_points_;
   /// The response acts (seen out of the plane, or first seen within
   /// detail::springReach); before that a body deep in the plane is pushed out at a
   /// bounded speed.

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 
 #include "device.h"
@@ -59,40 +60,19 @@ class MouseDevice : public Device {
   }
 
   void key(unsigned char k) override {
-    Vec3 axis = Vec3::Zero();
-    double sign = 1.0;
-    switch (k) {
-      case 'i':
-        axis = Vec3::UnitX();
-        break;
-      case 'k':
-        axis = Vec3::UnitX();
-        sign = -1;
-        break;
-      case 'j':
-        axis = Vec3::UnitY();
-        break;
-      case 'l':
-        axis = Vec3::UnitY();
-        sign = -1;
-        break;
-      case 'u':
-        axis = Vec3::UnitZ();
-        break;
-      case 'o':
-        axis = Vec3::UnitZ();
-        sign = -1;
-        break;
-      case ' ': {
-        std::lock_guard<std::mutex> lock(mutex_);
-        goHome();
-        return;
-      }
-      default:
-        return;
+    if (k == ' ') {
+      std::lock_guard<std::mutex> lock(mutex_);
+      goHome();
+      return;
     }
+    // Turns about +x, -x, +y, -y, +z, -z.
+    static const char kTurnKeys[] = "ikjluo";
+    const char* at = k != 0 ? std::strchr(kTurnKeys, k) : nullptr;
+    if (at == nullptr) return;
+    const int i = static_cast<int>(at - kTurnKeys);
+    const double angle = (i % 2 == 0 ? 1.0 : -1.0) * kKeyAngle;
     std::lock_guard<std::mutex> lock(mutex_);
-    orientation_ = (Quat(Eigen::AngleAxisd(sign * kKeyAngle, axis)) * orientation_).normalized();
+    orientation_ = (Quat(Eigen::AngleAxisd(angle, Vec3::Unit(i / 2))) * orientation_).normalized();
   }
 
   std::string status() const override {

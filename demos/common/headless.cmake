@@ -19,6 +19,17 @@ function(sc_run_headless name json_var)
   set(${json_var} "${json}" PARENT_SCOPE)
 endfunction()
 
+# sc_check_results(NAME JSON FAILURES SIZE_VAR): fails with FAILURES (the checks
+# that did not hold, if any) and JSON; else checks OUT_DIR/NAME.png as sc_check_png
+# does (4500 bytes at least) and sets SIZE_VAR to its size.
+function(sc_check_results name json failures size_var)
+  if(failures)
+    message(FATAL_ERROR "${failures}\n${json}")
+  endif()
+  sc_check_png(${OUT_DIR}/${name}.png 4500 size)
+  set(${size_var} ${size} PARENT_SCOPE)
+endfunction()
+
 # sc_check_png(PATH MIN_BYTES SIZE_VAR): fails unless PATH starts with the PNG
 # signature and has at least MIN_BYTES (a uniform 800x600 frame compresses to about
 # 2.7 KB); sets SIZE_VAR to its size.

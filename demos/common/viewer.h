@@ -3,6 +3,8 @@
 // a text overlay, and PNG capture of the frame (libpng, glReadPixels).
 #pragma once
 
+#include <cstdio>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -21,6 +23,24 @@ struct DrawItem {
   float matrix[16];
   float color[3];
 };
+
+/// An item that draws `mesh` with the column-major 4x4 `matrix` (any real type) in `color`.
+template <class Real>
+DrawItem drawItem(const DrawMesh* mesh, const Real* matrix, const float color[3]) {
+  DrawItem item;
+  item.mesh = mesh;
+  for (int i = 0; i < 16; ++i) item.matrix[i] = float(matrix[i]);
+  std::memcpy(item.color, color, sizeof(item.color));
+  return item;
+}
+
+/// The overlay's text, printf-style, cut at 511 characters.
+template <class... Args>
+std::string overlayText(const char* format, Args... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof(buf), format, args...);
+  return buf;
+}
 
 struct ViewerCallbacks {
   std::function<void()> step;                           ///< advance the simulation (per frame)

@@ -52,10 +52,7 @@ if(CLOCK STREQUAL "lockstep")
                            "max jump ${max_impact_jump_N} N); ")
   endif()
 endif()
-if(failures)
-  message(FATAL_ERROR "${failures}\n${json}")
-endif()
-sc_check_png(${OUT_DIR}/haptic_coupling.png 4500 size)
+sc_check_results(haptic_coupling "${json}" "${failures}" size)
 message(STATUS "haptic ${SCENE} (${CLOCK}): inside ${inside}, depth ${max_penetration_m} m, "
                "generated ${energy_generated_max_J} J, jump ${max_force_jump_N} N (ratio "
                "${max_force_jump_ratio}), impact jump ${max_impact_jump_N} N (ratio "

@@ -101,16 +101,8 @@ DrawMesh drawMeshOf(const sc::bullet::ScBulletShape& shape) {
 
 HapticScene::HapticScene(const std::string& scene, double physics_dt)
     : cavity_(scene == "cavity"), physics_dt_(physics_dt) {
-  config_ =
-      std::make_unique<btDefaultCollisionConfiguration>(sc::bullet::collisionConstructionInfo());
-  dispatcher_ = std::make_unique<btCollisionDispatcher>(config_.get());
-  auto plugin = sc::bullet::registerSmartCollision(dispatcher_.get(), {});
-  if (!plugin.ok()) fail("registerSmartCollision: " + plugin.status().message());
-  broadphase_ = std::make_unique<btDbvtBroadphase>();
-  solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
-  world_ = std::make_unique<sc::bullet::ScDynamicsWorld>(
-      dispatcher_.get(), broadphase_.get(), solver_.get(), config_.get(), plugin.value());
-  world_->setGravity(btVector3(0, -9.81f, 0));
+  bullet_.makeSmartCollision({});
+  bullet_.world->setGravity(btVector3(0, -9.81f, 0));
   if (cavity_)
     buildCavity();
   else
@@ -118,7 +110,7 @@ HapticScene::HapticScene(const std::string& scene, double physics_dt)
 }
 
 HapticScene::~HapticScene() {
-  for (auto& b : rigid_) world_->removeRigidBody(b.get());
+  for (auto& b : rigid_) bullet_.world->removeRigidBody(b.get());
 }
 
 sc::haptics::CouplingPose HapticScene::bodyTarget(const sc::haptics::CouplingPose& device) const {
@@ -170,7 +162,7 @@ btRigidBody* HapticScene::addRigid(const sc::bullet::ScBulletShape& shape, doubl
   rigid_.push_back(std::make_unique<btRigidBody>(ci));
   btRigidBody* b = rigid_.back().get();
   b->setActivationState(DISABLE_DEACTIVATION);
-  world_->addRigidBody(b);
+  bullet_.world->addRigidBody(b);
   return b;
 }
 
@@ -187,10 +179,10 @@ void HapticScene::setTool(btRigidBody* body, const sc::bullet::ScBulletShape& sh
   // The hand-held body's contacts are springs of a period of 10 physics steps
   // (kT = m omega^2), not the default rigid rows: the coupling's force-continuity
   // bound (docs/haptics.md) assumes a contact stops the body over several steps.
-  sc::bullet::ContactSettings soft = world_->plugin().settings().contact;
+  sc::bullet::ContactSettings soft = bullet_.world->plugin().settings().contact;
   const double omega = 2.0 * kPi / (soft.contact_period_steps * physics_dt_);
   soft.contact_stiffness = double(1.0 / tool_->getInvMass()) * omega * omega;
-  if (!world_->plugin().setBodySettings(tool_, soft).ok()) fail("setBodySettings");
+  if (!bullet_.world->plugin().setBodySettings(tool_, soft).ok()) fail("setBodySettings");
 }
 
 void HapticScene::buildCommon() {

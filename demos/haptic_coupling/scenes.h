@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/bullet_world.h"
 #include "../common/viewer.h"
 #include "smartcollision/bullet/bullet.h"
 #include "smartcollision/haptics/virtual_coupling.h"
@@ -26,7 +27,7 @@ class HapticScene {
   HapticScene(const HapticScene&) = delete;
   HapticScene& operator=(const HapticScene&) = delete;
 
-  sc::bullet::ScDynamicsWorld& world() { return *world_; }
+  sc::bullet::ScDynamicsWorld& world() { return *bullet_.world; }
   btRigidBody& tool() { return *tool_; }
   const btRigidBody& tool() const { return *tool_; }
   const btRigidBody& fixed() const { return *fixed_; }
@@ -64,11 +65,7 @@ class HapticScene {
 
   bool cavity_;
   double physics_dt_;
-  std::unique_ptr<btDefaultCollisionConfiguration> config_;
-  std::unique_ptr<btCollisionDispatcher> dispatcher_;
-  std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-  std::unique_ptr<sc::bullet::ScDynamicsWorld> world_;
+  sc::demo::BulletWorld<sc::bullet::ScDynamicsWorld> bullet_;
   std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> rigid_;
   btRigidBody* tool_ = nullptr;

@@ -140,14 +140,11 @@ class Demo {
 
   void collect(std::vector<sc::demo::DrawItem>& items) const {
     for (const auto& o : objects_) {
-      sc::demo::DrawItem item;
-      item.mesh = &o->shape.draw;
       double m[16];
       o->sc->GetTransformation(SC_TRANSFORMATION_MATRIX, m);
-      for (int i = 0; i < 16; ++i) item.matrix[i] = float(m[i]);
       static const float colors[4][3] = {
           {0.6f, 0.6f, 0.6f}, {0.3f, 0.75f, 0.35f}, {0.95f, 0.8f, 0.2f}, {0.9f, 0.25f, 0.2f}};
-      std::memcpy(item.color, colors[int(o->status)], sizeof(item.color));
+      sc::demo::DrawItem item = sc::demo::drawItem(&o->shape.draw, m, colors[int(o->status)]);
       if (o->group == SC_GROUP_STATIC)  // the floor a little darker
         for (float& c : item.color) c *= 0.8f;
       items.push_back(item);
@@ -155,14 +152,12 @@ class Demo {
   }
 
   std::string overlay() const {
-    char buf[512];
-    std::snprintf(buf, sizeof(buf),
-                  "t = %.2f s   pairs %d (activities imply %d)   directions %d\n"
-                  "group 1 active (object 11 inactive), 2 active (1->2 one-way inactive),\n"
-                  "3 passive, 4 sleeping, static floor\n"
-                  "red penetrating, yellow within %.1f, green apart, grey not computed",
-                  t_, last_pairs_, expectedPairs(), last_directions_, kWarnDistance);
-    return buf;
+    return sc::demo::overlayText(
+        "t = %.2f s   pairs %d (activities imply %d)   directions %d\n"
+        "group 1 active (object 11 inactive), 2 active (1->2 one-way inactive),\n"
+        "3 passive, 4 sleeping, static floor\n"
+        "red penetrating, yellow within %.1f, green apart, grey not computed",
+        t_, last_pairs_, expectedPairs(), last_directions_, kWarnDistance);
   }
 
   std::string json() const {

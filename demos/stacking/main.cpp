@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/bullet_world.h"
 #include "../common/cli.h"
 #include "../common/viewer.h"
 #include "sc_support/off_mesh.h"
@@ -73,21 +74,12 @@ class Demo {
 
   void build() {
     clear();
-    config_ = std::make_unique<btDefaultCollisionConfiguration>(sc::bullet::collisionConstructionInfo());
-    dispatcher_ = std::make_unique<btCollisionDispatcher>(config_.get());
     sc::bullet::PluginSettings settings;
     settings.model = options_.model;
     settings.query.rotation_mode = options_.rotation;
-    auto plugin = sc::bullet::registerSmartCollision(dispatcher_.get(), settings);
-    if (!plugin.ok()) {
-      std::fprintf(stderr, "registerSmartCollision: %s\n", plugin.status().message().c_str());
-      std::exit(1);
-    }
-    broadphase_ = std::make_unique<btDbvtBroadphase>();
-    solver_ = std::make_unique<sc::bullet::StackingSolver>();  // the mass-ratio scene stands at 60 Hz
-    world_ = std::make_unique<sc::bullet::ScDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
-                                                           config_.get(), plugin.value());
-    world_->setGravity(btVector3(0, -9.81f, 0));
+    // StackingSolver: the mass-ratio scene stands at 60 Hz.
+    bullet_.makeSmartCollision(settings, std::make_unique<sc::bullet::StackingSolver>());
+    bullet_.world->setGravity(btVector3(0, -9.81f, 0));
     ground_shape_ = std::make_unique<btBoxShape>(btVector3(10, 1, 10));
     ground_mesh_ = drawMeshOf(*makeShape(boxMesh(1.0)));  // drawn scaled below
     addRigid(ground_shape_.get(), 0.0, btVector3(0, -1, 0));
@@ -115,10 +107,10 @@ class Demo {
 
   void step() {
     const auto t0 = std::chrono::steady_clock::now();
-    world_->stepSimulation(btScalar(1.0 / options_.hz), 1, btScalar(1.0 / options_.hz));
+    bullet_.world->stepSimulation(btScalar(1.0 / options_.hz), 1, btScalar(1.0 / options_.hz));
     step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++steps_;
-    max_depth_ = std::max(max_depth_, world_->plugin().stats().max_depth);
+    max_depth_ = std::max(max_depth_, bullet_.world->plugin().stats().max_depth);
     trackSoakMetrics();
     const Body& top = bodies_.back();
     const btVector3 d = top.body->getCenterOfMassPosition() - top.start;
@@ -147,7 +139,7 @@ class Demo {
 
   void toggleModel() {
     options_.model = options_.model == ContactModel::Potential ? ContactModel::Manifold : ContactModel::Potential;
-    world_->plugin().setContactModel(options_.model);
+    bullet_.world->plugin().setContactModel(options_.model);
   }
   void setScene(const std::string& s) {
     options_.scene = s;
@@ -155,19 +147,15 @@ class Demo {
   }
 
   void collect(std::vector<sc::demo::DrawItem>& items) const {
-    sc::demo::DrawItem ground;
-    ground.mesh = &ground_mesh_;
     btTransform t(btQuaternion::getIdentity(), btVector3(0, -0.5f, 0));
     btScalar m[16];
     t.getOpenGLMatrix(m);
-    for (int i = 0; i < 16; ++i) ground.matrix[i] = float(m[i]);
+    const float ground_color[3] = {0.55f, 0.6f, 0.65f};
+    sc::demo::DrawItem ground = sc::demo::drawItem(&ground_mesh_, m, ground_color);
     // the ground mesh is a 2 m cube: stretch it to 20 x 1 x 20 m
     ground.matrix[0] = 10;
     ground.matrix[5] = 0.5f;
     ground.matrix[10] = 10;
-    ground.color[0] = 0.55f;
-    ground.color[1] = 0.6f;
-    ground.color[2] = 0.65f;
     items.push_back(ground);
     std::vector<const Body*> drawn;
     if (base_.body != nullptr) drawn.push_back(&base_);
@@ -175,26 +163,22 @@ class Demo {
     for (const Body& b : bodies_) drawn.push_back(&b);
     for (const Body* bp : drawn) {
       const Body& b = *bp;
-      sc::demo::DrawItem item;
-      item.mesh = b.mesh;
       b.body->getWorldTransform().getOpenGLMatrix(m);
-      for (int i = 0; i < 16; ++i) item.matrix[i] = float(m[i]);
+      sc::demo::DrawItem item = sc::demo::drawItem(b.mesh, m, b.color);
       for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 4; ++r) item.matrix[4 * c + r] *= float(b.scale[c]);
-      std::memcpy(item.color, b.color, sizeof(item.color));
       items.push_back(item);
     }
   }
 
   std::string overlay() const {
-    char buf[512];
-    std::snprintf(buf, sizeof(buf),
-                  "scene %s (1 tower, 2 pyramid, 3 mass ratio, 4 meshes, 5 pile; r reset)\n"
-                  "model %s (m switches)   t = %.2f s   %.3f ms/step\n"
-                  "top drift %.4f m   max penetration %.4f m",
-                  options_.scene.c_str(), options_.model == ContactModel::Potential ? "potential" : "manifold",
-                  steps_ / options_.hz, steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, max_drift_, max_depth_);
-    return buf;
+    return sc::demo::overlayText(
+        "scene %s (1 tower, 2 pyramid, 3 mass ratio, 4 meshes, 5 pile; r reset)\n"
+        "model %s (m switches)   t = %.2f s   %.3f ms/step\n"
+        "top drift %.4f m   max penetration %.4f m",
+        options_.scene.c_str(),
+        options_.model == ContactModel::Potential ? "potential" : "manifold", steps_ / options_.hz,
+        steps_ ? 1e3 * step_seconds_ / steps_ : 0.0, max_drift_, max_depth_);
   }
 
   double energy() const {
@@ -248,7 +232,7 @@ class Demo {
     rigid_.push_back(std::make_unique<btRigidBody>(ci));
     btRigidBody* b = rigid_.back().get();
     b->setActivationState(DISABLE_DEACTIVATION);  // metrics see the contact model, not sleep
-    world_->addRigidBody(b);
+    bullet_.world->addRigidBody(b);
     return b;
   }
 
@@ -361,17 +345,13 @@ class Demo {
   }
 
   void clear() {
-    if (world_)
-      for (auto& b : rigid_) world_->removeRigidBody(b.get());
+    if (bullet_.world)
+      for (auto& b : rigid_) bullet_.world->removeRigidBody(b.get());
     rigid_.clear();
     bodies_.clear();
     walls_.clear();
     base_ = Body();
-    world_.reset();
-    solver_.reset();
-    broadphase_.reset();
-    dispatcher_.reset();
-    config_.reset();
+    bullet_.reset();
     mesh_draw_.clear();
     wall_draw_.clear();
     wall_shapes_.clear();
@@ -381,11 +361,7 @@ class Demo {
   }
 
   Options options_;
-  std::unique_ptr<btDefaultCollisionConfiguration> config_;
-  std::unique_ptr<btCollisionDispatcher> dispatcher_;
-  std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-  std::unique_ptr<sc::bullet::ScDynamicsWorld> world_;
+  sc::demo::BulletWorld<sc::bullet::ScDynamicsWorld> bullet_;
   std::unique_ptr<btBoxShape> ground_shape_;
   std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> shapes_;
   std::shared_ptr<sc::bullet::ScBulletShape> box_;

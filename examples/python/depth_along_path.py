@@ -19,25 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import smartcollision as sc  # noqa: E402
-
-
-def torus(major=1.0, minor=0.35, around=48, tube=24):
-    u = 2 * np.pi * np.arange(around) / around
-    w = 2 * np.pi * np.arange(tube) / tube
-    uu, ww = np.meshgrid(u, w, indexing="ij")
-    r = major + minor * np.cos(ww)
-    v = np.stack([r * np.cos(uu), r * np.sin(uu), minor * np.sin(ww)], axis=-1).reshape(-1, 3)
-    i, j = np.meshgrid(np.arange(around), np.arange(tube), indexing="ij")
-    a, d = i * tube + j, i * tube + (j + 1) % tube
-    b, c = ((i + 1) % around) * tube + j, ((i + 1) % around) * tube + (j + 1) % tube
-    return v, np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
-
-
-def box(h):
-    v = np.array([[x, y, z] for x in (-h, h) for y in (-h, h) for z in (-h, h)], float)
-    f = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
-                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
-    return v, f
+from smartcollision.meshes import box, torus  # noqa: E402
 
 
 def path(steps):
@@ -81,7 +63,7 @@ def main():
     parser.add_argument("--out", default="depth_along_path.png")
     parser.add_argument("--steps", type=int, default=400)
     args = parser.parse_args()
-    ring, cube = sc.Model(*torus()), sc.Model(*box(0.25))
+    ring, cube = sc.Model(*torus(1.0, 0.35, 48, 24)), sc.Model(*box(0.25, 0.25, 0.25))
     s, poses = path(args.steps)
     tolerances = [3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8))

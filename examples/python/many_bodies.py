@@ -17,25 +17,7 @@ import time
 import numpy as np
 
 import smartcollision as sc
-
-
-def torus(major=0.5, minor=0.15, around=24, tube=12):
-    u = 2 * np.pi * np.arange(around) / around
-    w = 2 * np.pi * np.arange(tube) / tube
-    uu, ww = np.meshgrid(u, w, indexing="ij")
-    r = major + minor * np.cos(ww)
-    v = np.stack([r * np.cos(uu), r * np.sin(uu), minor * np.sin(ww)], axis=-1).reshape(-1, 3)
-    i, j = np.meshgrid(np.arange(around), np.arange(tube), indexing="ij")
-    a, d = i * tube + j, i * tube + (j + 1) % tube
-    b, c = ((i + 1) % around) * tube + j, ((i + 1) % around) * tube + (j + 1) % tube
-    return v, np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
-
-
-def box(hx, hy, hz):
-    v = np.array([[x, y, z] for x in (-hx, hx) for y in (-hy, hy) for z in (-hz, hz)], float)
-    f = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
-                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
-    return v, f
+from smartcollision.meshes import box, torus
 
 
 def quaternion(rotvec):
@@ -52,7 +34,7 @@ def main():
     parser.add_argument("--threads", type=int, default=0, help="scene threads (0: automatic)")
     args = parser.parse_args()
     rng = np.random.default_rng(1)
-    ring, brick = sc.Model(*torus()), sc.Model(*box(0.3, 0.2, 0.1))
+    ring, brick = sc.Model(*torus(0.5, 0.15, 24, 12)), sc.Model(*box(0.3, 0.2, 0.1))
     floor = sc.Model(*box(5, 5, 0.1))
     scene = sc.Scene()
     scene.settings = sc.Settings(tolerance=1e-3, max_distance=0.2, threads=args.threads,

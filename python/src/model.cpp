@@ -71,6 +71,14 @@ py::array view(const T* data, size_t count, const py::object& owner) {
   return a;
 }
 
+/// A read-only view of one piece's stored rows (`rows`: MeshData::vertices or
+/// ::triangles), kept alive by the model `self`.
+template <class Rows>
+py::array meshView(const py::object& self, int piece, Rows sc::MeshData::*rows) {
+  const Rows& r = pieceOf(self.cast<const PyModel&>(), piece).mesh().*rows;
+  return view(r.empty() ? nullptr : r[0].data(), r.size(), self);
+}
+
 void bindStats(py::module_& m) {
   py::class_<sc::PieceStats>(m, "PieceStats", "What preprocessing made of one piece.")
       .def_readonly("vertices", &sc::PieceStats::vertices, "Input vertices.")
@@ -153,15 +161,13 @@ Raises InvalidArgumentError (shape, non-finite, bad index, threads outside
       .def(
           "vertices",
           [](const py::object& self, int piece) {
-            const auto& v = pieceOf(self.cast<const PyModel&>(), piece).mesh().vertices;
-            return view(v.empty() ? nullptr : v[0].data(), v.size(), self);
+            return meshView(self, piece, &sc::MeshData::vertices);
           },
           py::arg("piece") = 0, "Read-only (n, 3) float64 view of a piece's stored vertices.")
       .def(
           "triangles",
           [](const py::object& self, int piece) {
-            const auto& t = pieceOf(self.cast<const PyModel&>(), piece).mesh().triangles;
-            return view(t.empty() ? nullptr : t[0].data(), t.size(), self);
+            return meshView(self, piece, &sc::MeshData::triangles);
           },
           py::arg("piece") = 0,
           "Read-only (m, 3) int32 view of a piece's stored triangles (flipped if given inside "

@@ -90,12 +90,7 @@ TEST_P(BunnyInBowl, RestsWithoutJitter) {
   EXPECT_GT(r.height, -0.12);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Models, BunnyInBowl,
-    ::testing::Values(bullet::ContactModel::Potential, bullet::ContactModel::Manifold),
-    [](const ::testing::TestParamInfo<bullet::ContactModel>& p) {
-      return std::string(p.param == bullet::ContactModel::Potential ? "Potential" : "Manifold");
-    });
+INSTANTIATE_TEST_SUITE_P(Models, BunnyInBowl, bothContactModels(), contactModelName);
 
 }  // namespace
 }  // namespace sc::test

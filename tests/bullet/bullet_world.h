@@ -6,8 +6,11 @@
 #include <btBulletDynamicsCommon.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "smartcollision/bullet/bullet.h"
@@ -40,9 +43,55 @@ struct BulletWorld {
   std::vector<std::unique_ptr<btRigidBody>> bodies;
 };
 
+/// Both contact models: the parameter of tests run for each.
+inline auto bothContactModels() {
+  return ::testing::Values(bullet::ContactModel::Potential, bullet::ContactModel::Manifold);
+}
+
 /// Parameter name of tests run for both contact models.
 inline std::string contactModelName(const ::testing::TestParamInfo<bullet::ContactModel>& info) {
   return info.param == bullet::ContactModel::Potential ? "Potential" : "Manifold";
+}
+
+/// How a column of bodies moved while stepped: the largest horizontal distance of a
+/// centre from the y axis over the whole run, and the RMS speed over its last steps.
+struct ColumnMotion {
+  double drift = 0.0;      ///< [m]
+  double rms_speed = 0.0;  ///< [m/s]
+};
+
+/// Steps `w` `steps` times; the RMS speed is over the last `last` steps, after each of
+/// which `each_last()` runs (the caller's own figures, such as overlaps).
+template <class EachLast>
+ColumnMotion stepColumn(BulletWorld& w, const std::vector<btRigidBody*>& column, int steps,
+                        int last, EachLast each_last) {
+  ColumnMotion m;
+  double s2 = 0.0;
+  int samples = 0;
+  for (int i = 0; i < steps; ++i) {
+    w.step();
+    for (btRigidBody* b : column) {
+      const btVector3 p = b->getCenterOfMassPosition();
+      m.drift = std::max(m.drift, std::hypot(double(p.x()), double(p.z())));
+    }
+    if (i < steps - last) continue;
+    each_last();
+    for (btRigidBody* b : column) s2 += double(b->getLinearVelocity().length2());
+    samples += static_cast<int>(column.size());
+  }
+  m.rms_speed = std::sqrt(s2 / std::max(1, samples));
+  return m;
+}
+
+/// "None", "Input", "Free" or "Mix": a rotation mode in test names and reports.
+inline const char* modeName(RotationMode m) {
+  constexpr std::pair<RotationMode, const char*> kNames[] = {{RotationMode::None, "None"},
+                                                             {RotationMode::Input, "Input"},
+                                                             {RotationMode::Free, "Free"},
+                                                             {RotationMode::Mix, "Mix"}};
+  for (const auto& [mode, name] : kNames)
+    if (mode == m) return name;
+  return "?";
 }
 
 /// Deepest corner of box `a` inside box `b` (both cubes of half edge `half`), or below

@@ -45,20 +45,11 @@ ColumnRun runColumn(BulletWorld& w, const std::vector<btRigidBody*>& column, dou
   ColumnRun r;
   const int steps = static_cast<int>(std::lround(seconds / w.dt));
   const int last_second = static_cast<int>(std::lround(1.0 / w.dt));
-  double s2 = 0.0;
-  int samples = 0;
-  for (int i = 0; i < steps; ++i) {
-    w.step();
-    for (btRigidBody* b : column) {
-      const btVector3 p = b->getCenterOfMassPosition();
-      r.max_drift = std::max(r.max_drift, std::hypot(double(p.x()), double(p.z())));
-    }
-    if (i < steps - last_second) continue;
+  const ColumnMotion m = stepColumn(w, column, steps, last_second, [&] {
     r.max_overlap_end = std::max(r.max_overlap_end, columnOverlap(column));
-    for (btRigidBody* b : column) s2 += double(b->getLinearVelocity().length2());
-    samples += static_cast<int>(column.size());
-  }
-  r.rms_speed = std::sqrt(s2 / std::max(1, samples));
+  });
+  r.rms_speed = m.rms_speed;
+  r.max_drift = m.drift;
   const double ideal_top = (double(column.size()) - 0.5) * kSize;
   r.sag = ideal_top - double(column.back()->getCenterOfMassPosition().y());
   return r;
@@ -79,19 +70,6 @@ void setRotationMode(BulletWorld& w, RotationMode mode) {
   bullet::PluginSettings s = w.plugin->settings();
   s.query.rotation_mode = mode;
   ASSERT_TRUE(w.plugin->setSettings(s).ok());
-}
-
-const char* modeName(RotationMode m) {
-  switch (m) {
-    case RotationMode::Input:
-      return "Input";
-    case RotationMode::Mix:
-      return "Mix";
-    case RotationMode::Free:
-      return "Free";
-    default:
-      return "None";
-  }
 }
 
 void print(const std::string& name, const ColumnRun& r) {
@@ -151,9 +129,7 @@ std::string ratioName(
 }
 
 INSTANTIATE_TEST_SUITE_P(Rates, GameRateMassRatio,
-                         ::testing::Combine(::testing::Values(60.0, 240.0),
-                                            ::testing::Values(bullet::ContactModel::Potential,
-                                                              bullet::ContactModel::Manifold),
+                         ::testing::Combine(::testing::Values(60.0, 240.0), bothContactModels(),
                                             ::testing::Values(100.0, 1000.0)),
                          ratioName);
 
@@ -237,8 +213,7 @@ std::string projectileName(
 
 INSTANTIATE_TEST_SUITE_P(
     Shots, GameRateProjectile,
-    ::testing::Combine(::testing::Values(bullet::ContactModel::Potential,
-                                         bullet::ContactModel::Manifold),
+    ::testing::Combine(bothContactModels(),
                        ::testing::Values(Projectile{"cube", 50.0}, Projectile{"cube", 200.0},
                                          Projectile{"torus", 50.0}, Projectile{"torus", 200.0})),
     projectileName);

@@ -88,10 +88,7 @@ TEST_P(RestingPair, KeepsItsRowsUntilMovedOrResettled) {
   EXPECT_EQ(w.plugin->stats().reused, 0);  // rows made under other settings
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, RestingPair,
-                         ::testing::Values(bullet::ContactModel::Potential,
-                                           bullet::ContactModel::Manifold),
-                         contactModelName);
+INSTANTIATE_TEST_SUITE_P(Models, RestingPair, bothContactModels(), contactModelName);
 
 class PassiveApproach : public ::testing::TestWithParam<bullet::ContactModel> {};
 
@@ -118,10 +115,7 @@ TEST_P(PassiveApproach, FastApproachIsCaughtAtTheSurface) {
   EXPECT_LT(gap(p), 0.01);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, PassiveApproach,
-                         ::testing::Values(bullet::ContactModel::Potential,
-                                           bullet::ContactModel::Manifold),
-                         contactModelName);
+INSTANTIATE_TEST_SUITE_P(Models, PassiveApproach, bothContactModels(), contactModelName);
 
 }  // namespace
 }  // namespace sc::test

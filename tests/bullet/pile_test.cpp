@@ -180,10 +180,7 @@ using PileParam = std::tuple<bullet::ContactModel, RotationMode, double>;
 std::string label(const PileParam& p) {
   const RotationMode m = std::get<1>(p);
   return std::string(std::get<0>(p) == bullet::ContactModel::Potential ? "Potential" : "Manifold") +
-         (m == RotationMode::Mix    ? "Mix"
-          : m == RotationMode::Free ? "Free"
-                                    : "Input") +
-         std::to_string(int(std::get<2>(p))) + "Hz";
+         modeName(m) + std::to_string(int(std::get<2>(p))) + "Hz";
 }
 
 PileRun dropAndRun(const PileParam& p, double seconds) {

@@ -181,9 +181,7 @@ TEST_P(PrimitiveRest, MeshBoxStackStandsOnStaticPlane) {
   EXPECT_LT(speed, 0.01);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, PrimitiveRest,
-                         ::testing::Values(ContactModel::Potential, ContactModel::Manifold),
-                         contactModelName);
+INSTANTIATE_TEST_SUITE_P(Models, PrimitiveRest, bothContactModels(), contactModelName);
 
 TEST(PrimitiveTunnelling, SmallSphereAtFiftyMetresPerSecondNeverPassesThinWall) {
   // The sphere's centre crosses the zero-thickness wall within one substep (0.21 m

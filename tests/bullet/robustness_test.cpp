@@ -78,10 +78,7 @@ TEST_P(Recovery, TowerSpawnedTouchingDoesNotPop) {
   EXPECT_NEAR(top, 4.5, 1e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, Recovery,
-                         ::testing::Values(bullet::ContactModel::Potential,
-                                           bullet::ContactModel::Manifold),
-                         contactModelName);
+INSTANTIATE_TEST_SUITE_P(Models, Recovery, bothContactModels(), contactModelName);
 
 /// A 2 m x 2 m single-sheet wall (two triangles, zero thickness) in the plane x = 0.
 MeshData wallMesh() {

@@ -52,22 +52,15 @@ Outcome runBoxColumn(bool stacking, double hz) {
   Outcome o;
   const int steps = static_cast<int>(std::lround(kSeconds * hz));
   const int last = static_cast<int>(std::lround(hz));
-  double s2 = 0.0;
-  for (int i = 0; i < steps; ++i) {
-    w.step();
-    for (btRigidBody* b : column) {
-      const btVector3 p = b->getCenterOfMassPosition();
-      o.drift = std::max(o.drift, std::hypot(double(p.x()), double(p.z())));
-    }
-    if (i < steps - last) continue;
+  const ColumnMotion m = stepColumn(w, column, steps, last, [&] {
     o.overlap = std::max(o.overlap, boxCornerDepth(*column[0], nullptr, kHalf));
     for (std::size_t k = 1; k < column.size(); ++k) {
       o.overlap = std::max(o.overlap, boxCornerDepth(*column[k], column[k - 1], kHalf));
       o.overlap = std::max(o.overlap, boxCornerDepth(*column[k - 1], column[k], kHalf));
     }
-    for (btRigidBody* b : column) s2 += double(b->getLinearVelocity().length2());
-  }
-  o.rms = std::sqrt(s2 / double(last * int(column.size())));
+  });
+  o.drift = m.drift;
+  o.rms = m.rms_speed;
   std::printf(
       "[btBoxShape 1:1000 %.0f Hz, %s] overlap %.2f mm, rms speed %.2e m/s, drift %.2f mm\n", hz,
       stacking ? "StackingSolver" : "plain solver", 1e3 * o.overlap, o.rms, 1e3 * o.drift);
@@ -155,10 +148,7 @@ TEST_P(StackingSolverDrop, HeavyOnLightGainsNoEnergy) {
   EXPECT_LE(rms, 0.01);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, StackingSolverDrop,
-                         ::testing::Values(bullet::ContactModel::Potential,
-                                           bullet::ContactModel::Manifold),
-                         contactModelName);
+INSTANTIATE_TEST_SUITE_P(Models, StackingSolverDrop, bothContactModels(), contactModelName);
 
 }  // namespace
 }  // namespace sc::test

@@ -171,7 +171,7 @@ TEST_P(RotationStacking, FifteenBoxPyramidStandsWithTheRpdvTorque) {
 }
 
 std::string rotationModeName(const ::testing::TestParamInfo<RotationMode>& mode) {
-  return mode.param == RotationMode::Mix ? "Mix" : "Free";
+  return modeName(mode.param);
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, RotationStacking,
@@ -205,10 +205,7 @@ TEST_P(Stacking, MassRatioHundredStackStands) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, Stacking,
-                         ::testing::Values(bullet::ContactModel::Potential,
-                                           bullet::ContactModel::Manifold),
-                         contactModelName);
+INSTANTIATE_TEST_SUITE_P(Models, Stacking, bothContactModels(), contactModelName);
 
 }  // namespace
 }  // namespace sc::test

@@ -63,6 +63,15 @@ struct HelloScene {
     moveTo(SC_POSITION_ORIGIN, position2);
   }
 
+  /// Reads `field` of the controlled direction into `out` (double or float).
+  template <class Value>
+  void read(SCenum field, Value* out) {
+    int index = 0;
+    bool reverse = false;
+    ASSERT_TRUE(controlledDirection(index, reverse));
+    ASSERT_EQ(manager.GetStatus(field, out, index, reverse), SC_NO_ERROR);
+  }
+
   /// The controlled direction's distance; NaN, with a failure, unless its result is Ok.
   double controlledDistance() {
     int index = 0;
@@ -82,16 +91,12 @@ TEST(HelloSmartCollision, DistanceAtOneOneOneIsSqrtFourThirds) {
   const double position1[3] = {1.0, 1.0, 1.0};
   hello.moveTo(SC_POSITION_ORIGIN, position1);
   EXPECT_NEAR(hello.controlledDistance(), std::sqrt(4.0 / 3.0), 1e-9);
-  int index = 0;
-  bool reverse = false;
-  ASSERT_TRUE(hello.controlledDirection(index, reverse));
   // The closest points: the controlled tetrahedron's corner {1,1,1} and the centre
   // {1/3,1/3,1/3} of the static tetrahedron's slanted face.
   double on_target[3], on_opponent[3], normal[3];
-  ASSERT_EQ(hello.manager.GetStatus(SC_POINT_ON_TARGET, on_target, index, reverse), SC_NO_ERROR);
-  ASSERT_EQ(hello.manager.GetStatus(SC_POINT_ON_OPPONENT, on_opponent, index, reverse),
-            SC_NO_ERROR);
-  ASSERT_EQ(hello.manager.GetStatus(SC_CONTACT_NORMAL, normal, index, reverse), SC_NO_ERROR);
+  hello.read(SC_POINT_ON_TARGET, on_target);
+  hello.read(SC_POINT_ON_OPPONENT, on_opponent);
+  hello.read(SC_CONTACT_NORMAL, normal);
   const double k = 1.0 / std::sqrt(3.0);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(on_target[i], 1.0, 1e-9);
@@ -100,7 +105,7 @@ TEST(HelloSmartCollision, DistanceAtOneOneOneIsSqrtFourThirds) {
   }
   // The float overload reads the same result.
   float distance_f = 0.0f;
-  ASSERT_EQ(hello.manager.GetStatus(SC_DISTANCE, &distance_f, index, reverse), SC_NO_ERROR);
+  hello.read(SC_DISTANCE, &distance_f);
   EXPECT_NEAR(distance_f, std::sqrt(4.0 / 3.0), 1e-6);
 }
 
@@ -113,13 +118,10 @@ TEST(HelloSmartCollision, PenetrationDepthAtHalfZIsSqrtOneTwelfth) {
 TEST(HelloSmartCollision, ContactDataOfThePenetrationIsConsistent) {
   HelloScene hello;
   hello.pressIn();
-  int index = 0;
-  bool reverse = false;
-  ASSERT_TRUE(hello.controlledDirection(index, reverse));
   double normal[3], tpdv[3], contact[3], center[3];
-  ASSERT_EQ(hello.manager.GetStatus(SC_CONTACT_NORMAL, normal, index, reverse), SC_NO_ERROR);
-  ASSERT_EQ(hello.manager.GetStatus(SC_TPD_VECTOR, tpdv, index, reverse), SC_NO_ERROR);
-  ASSERT_EQ(hello.manager.GetStatus(SC_CONTACT_POSITION, contact, index, reverse), SC_NO_ERROR);
+  hello.read(SC_CONTACT_NORMAL, normal);
+  hello.read(SC_TPD_VECTOR, tpdv);
+  hello.read(SC_CONTACT_POSITION, contact);
   ASSERT_EQ(hello.manager.GetTransformation(kControlledGroup, SC_POSITION_WORLD_CENTER, center),
             SC_NO_ERROR);
   EXPECT_NEAR(norm3(normal), 1.0, 1e-12);
@@ -134,19 +136,16 @@ TEST(HelloSmartCollision, ContactDataOfThePenetrationIsConsistent) {
   }
   // RPDV vanishes: the rotation mode INPUT follows the (unchanged) input orientation.
   double rpdv[3];
-  ASSERT_EQ(hello.manager.GetStatus(SC_RPD_VECTOR, rpdv, index, reverse), SC_NO_ERROR);
+  hello.read(SC_RPD_VECTOR, rpdv);
   EXPECT_LE(norm3(rpdv), 1e-12);
 }
 
 TEST(HelloSmartCollision, TargetPlacedAtContactPositionTouchesWithinTolerance) {
   HelloScene hello;
   hello.pressIn();
-  int index = 0;
-  bool reverse = false;
-  ASSERT_TRUE(hello.controlledDirection(index, reverse));
   double contact[3], normal[3];
-  ASSERT_EQ(hello.manager.GetStatus(SC_CONTACT_POSITION, contact, index, reverse), SC_NO_ERROR);
-  ASSERT_EQ(hello.manager.GetStatus(SC_CONTACT_NORMAL, normal, index, reverse), SC_NO_ERROR);
+  hello.read(SC_CONTACT_POSITION, contact);
+  hello.read(SC_CONTACT_NORMAL, normal);
 
   // A fresh scene approaches the contact position from outside along the normal, so
   // the pair is tracked and a slight overlap would show as a small negative depth.

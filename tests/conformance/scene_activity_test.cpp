@@ -70,6 +70,16 @@ struct TestScene {
     EXPECT_EQ(manager.SetTransformation(gid, SC_POSITION_ORIGIN, origin), SC_NO_ERROR);
   }
 
+  void setGroup(int gid, SCenum activity) {
+    EXPECT_EQ(manager.SetActivityGroup(gid, activity), SC_NO_ERROR);
+  }
+  void setPair(int first, int second, SCenum activity) {
+    EXPECT_EQ(manager.SetActivityPair(first, second, activity), SC_NO_ERROR);
+  }
+  void setObject(int id, SCenum activity) {
+    EXPECT_EQ(manager.SetActivityObject(id, activity), SC_NO_ERROR);
+  }
+
   void update() { EXPECT_EQ(manager.UpdateStatus(), SC_NO_ERROR); }
 
   int count() {
@@ -77,6 +87,19 @@ struct TestScene {
     EXPECT_EQ(manager.GetStatus(SC_STATUS_COUNT, &n), SC_NO_ERROR);
     return n;
   }
+};
+
+/// Cubes 1 and 2 in groups `ga` and `gb`, gap 1 along x.
+struct TwoCubes : TestScene {
+  TwoCubes(int ga, int gb) {
+    addCube(1, ga, 0.0);
+    addCube(2, gb, 2.0);
+  }
+};
+
+/// Cubes 1 and 2 in groups 1 and 2, and cube 3 in the static group: three pairs.
+struct ThreeCubes : TwoCubes {
+  ThreeCubes() : TwoCubes(1, 2) { addCube(3, SC_GROUP_STATIC, 0.0, 3.0); }
 };
 
 /// Where the direction target -> opponent is in the status list.
@@ -97,6 +120,13 @@ Slot find(SCSceneManager& m, int target, int opponent) {
     }
   }
   return {};
+}
+
+/// The two ids of `field` (SC_OBJECT_ID or SC_PIECE_ID) at `slot`, target first.
+void expectIds(SCSceneManager& m, const Slot& slot, SCenum field, std::pair<int, int> ids) {
+  SCint got[2] = {-1, -1};
+  EXPECT_EQ(m.GetStatus(field, got, slot.index, slot.reverse), SC_NO_ERROR);
+  EXPECT_EQ(std::make_pair(int(got[0]), int(got[1])), ids) << "field " << field;
 }
 
 constexpr int kNotListed = -1000;
@@ -166,8 +196,8 @@ void checkCell(int row, int column) {
     TestScene s;
     s.addCube(1, ga, 0.0);
     s.addCube(2, gb, 2.0);
-    ASSERT_EQ(s.manager.SetActivityGroup(ga, kActivities[row]), SC_NO_ERROR);
-    ASSERT_EQ(s.manager.SetActivityGroup(gb, kActivities[column]), SC_NO_ERROR);
+    s.setGroup(ga, kActivities[row]);
+    s.setGroup(gb, kActivities[column]);
     s.update();
     const Way w = kTable81[row][column];
     EXPECT_EQ(s.count(), w == Way::None ? 0 : 1);
@@ -230,7 +260,7 @@ TEST(StaticGroup, SleepingPassiveOrInactiveGroupAgainstStaticIsNotListed) {
     TestScene s;
     s.addCube(1, SC_GROUP_STATIC, 0.0);
     s.addCube(2, 4, 2.0);
-    ASSERT_EQ(s.manager.SetActivityGroup(4, activity), SC_NO_ERROR);
+    s.setGroup(4, activity);
     s.update();
     EXPECT_EQ(s.count(), 0) << "activity " << activity;
   }
@@ -252,13 +282,10 @@ TEST(List810, SevenGroupsGiveThePairsOfFigure82) {
     const double a = 2.0 * kPi * g / 7.0;
     s.addCube(100 + g, g, 4.0 * std::cos(a), 4.0 * std::sin(a));
   }
-  ASSERT_EQ(s.manager.SetActivityGroup(0, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityGroup(1, SC_ACTIVITY_PASSIVE), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityGroup(2, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityGroup(3, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityGroup(4, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityGroup(5, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityGroup(6, SC_ACTIVITY_PASSIVE), SC_NO_ERROR);
+  const SCenum activity[7] = {SC_ACTIVITY_ACTIVE,   SC_ACTIVITY_PASSIVE, SC_ACTIVITY_INACTIVE,
+                              SC_ACTIVITY_SLEEPING, SC_ACTIVITY_ACTIVE,  SC_ACTIVITY_SLEEPING,
+                              SC_ACTIVITY_PASSIVE};
+  for (int g = 0; g < 7; ++g) s.setGroup(g, activity[g]);
   s.update();
   // Figure 8-2 (from Table 8-1): the two active groups 0 and 4 both ways, and each of
   // them as target against the sleeping (3, 5) and passive (1, 6) groups.
@@ -280,129 +307,101 @@ TEST(List810, SevenGroupsGiveThePairsOfFigure82) {
   EXPECT_EQ(computed, expected);
 }
 
+/// One SetActivityPair call, then the directions of the pair under test after update.
+struct PairStep {
+  int first, second;
+  SCenum activity;
+  Way way;
+};
+
+/// Applies `steps` in order, checking the directions of groups a, b after each.
+void runPairSteps(TestScene& s, int a, int b, std::initializer_list<PairStep> steps) {
+  for (const PairStep& step : steps) {
+    SCOPED_TRACE(testing::Message() << "SetActivityPair(" << step.first << ", " << step.second
+                                    << ", " << step.activity << ")");
+    s.setPair(step.first, step.second, step.activity);
+    s.update();
+    expectWay(s.manager, a, b, step.way);
+  }
+}
+
 TEST(PairActivity, ActiveOnTwoSleepingGroupsComputesBothDirections) {
-  TestScene s;
-  s.addCube(1, 1, 0.0);
-  s.addCube(2, 2, 2.0);
-  ASSERT_EQ(s.manager.SetActivityGroup(1, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityGroup(2, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
+  TwoCubes s(1, 2);
+  s.setGroup(1, SC_ACTIVITY_SLEEPING);
+  s.setGroup(2, SC_ACTIVITY_SLEEPING);
   s.update();
   expectWay(s.manager, 1, 2, Way::None);
-  ASSERT_EQ(s.manager.SetActivityPair(1, 2, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-  s.update();
-  expectWay(s.manager, 1, 2, Way::Both);
+  runPairSteps(s, 1, 2, {{1, 2, SC_ACTIVITY_ACTIVE, Way::Both}});
 }
 
 TEST(PairActivity, InactiveOnTwoActiveGroupsRemovesThePair) {
-  TestScene s;
-  s.addCube(1, 1, 0.0);
-  s.addCube(2, 2, 2.0);
+  TwoCubes s(1, 2);
   s.addCube(3, 3, 0.0, 3.0);
   s.update();
   EXPECT_EQ(s.count(), 3);
-  ASSERT_EQ(s.manager.SetActivityPair(2, 1, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
-  s.update();
+  runPairSteps(s, 1, 2, {{2, 1, SC_ACTIVITY_INACTIVE, Way::None}});
   EXPECT_EQ(s.count(), 2);
-  expectWay(s.manager, 1, 2, Way::None);
   expectWay(s.manager, 1, 3, Way::Both);
   expectWay(s.manager, 2, 3, Way::Both);
 }
 
 TEST(PairActivity, OneWayActiveSetsOnlyTheFirstGroupAsTarget) {
   {  // Two sleeping groups: nothing before, only 5 -> 2 after (5 > 2: not id order).
-    TestScene s;
-    s.addCube(1, 2, 0.0);
-    s.addCube(2, 5, 2.0);
-    ASSERT_EQ(s.manager.SetActivityGroup(2, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
-    ASSERT_EQ(s.manager.SetActivityGroup(5, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
-    ASSERT_EQ(s.manager.SetActivityPair(5, 2, SC_ACTIVITY_ONE_WAY_ACTIVE), SC_NO_ERROR);
-    s.update();
-    expectWay(s.manager, 5, 2, Way::AToB);
+    TwoCubes s(2, 5);
+    s.setGroup(2, SC_ACTIVITY_SLEEPING);
+    s.setGroup(5, SC_ACTIVITY_SLEEPING);
+    runPairSteps(s, 5, 2, {{5, 2, SC_ACTIVITY_ONE_WAY_ACTIVE, Way::AToB}});
   }
   {  // Sleeping 2, active 5: Table 8-1 gives 5 -> 2, the setting adds 2 -> 5.
-    TestScene s;
-    s.addCube(1, 2, 0.0);
-    s.addCube(2, 5, 2.0);
-    ASSERT_EQ(s.manager.SetActivityGroup(2, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
+    TwoCubes s(2, 5);
+    s.setGroup(2, SC_ACTIVITY_SLEEPING);
     s.update();
     expectWay(s.manager, 5, 2, Way::AToB);
-    ASSERT_EQ(s.manager.SetActivityPair(2, 5, SC_ACTIVITY_ONE_WAY_ACTIVE), SC_NO_ERROR);
-    s.update();
-    expectWay(s.manager, 2, 5, Way::Both);
+    runPairSteps(s, 2, 5, {{2, 5, SC_ACTIVITY_ONE_WAY_ACTIVE, Way::Both}});
   }
   {  // Pair set inactive first: the other direction stays inactive.
-    TestScene s;
-    s.addCube(1, 2, 0.0);
-    s.addCube(2, 5, 2.0);
-    ASSERT_EQ(s.manager.SetActivityPair(2, 5, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
-    ASSERT_EQ(s.manager.SetActivityPair(2, 5, SC_ACTIVITY_ONE_WAY_ACTIVE), SC_NO_ERROR);
-    s.update();
-    expectWay(s.manager, 2, 5, Way::AToB);
+    TwoCubes s(2, 5);
+    s.setPair(2, 5, SC_ACTIVITY_INACTIVE);
+    runPairSteps(s, 2, 5, {{2, 5, SC_ACTIVITY_ONE_WAY_ACTIVE, Way::AToB}});
   }
 }
 
 TEST(PairActivity, OneWayInactiveClearsOnlyTheFirstGroupAsTarget) {
   {  // Two active groups: 5 -> 2 off, 2 -> 5 kept from Table 8-1.
-    TestScene s;
-    s.addCube(1, 2, 0.0);
-    s.addCube(2, 5, 2.0);
-    ASSERT_EQ(s.manager.SetActivityPair(5, 2, SC_ACTIVITY_ONE_WAY_INACTIVE), SC_NO_ERROR);
-    s.update();
-    expectWay(s.manager, 2, 5, Way::AToB);
+    TwoCubes s(2, 5);
+    runPairSteps(s, 2, 5, {{5, 2, SC_ACTIVITY_ONE_WAY_INACTIVE, Way::AToB}});
   }
   {  // Two sleeping groups made active by the pair setting: 2 -> 5 off, 5 -> 2 kept.
-    TestScene s;
-    s.addCube(1, 2, 0.0);
-    s.addCube(2, 5, 2.0);
-    ASSERT_EQ(s.manager.SetActivityGroup(2, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
-    ASSERT_EQ(s.manager.SetActivityGroup(5, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
-    ASSERT_EQ(s.manager.SetActivityPair(2, 5, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-    ASSERT_EQ(s.manager.SetActivityPair(2, 5, SC_ACTIVITY_ONE_WAY_INACTIVE), SC_NO_ERROR);
-    s.update();
-    expectWay(s.manager, 5, 2, Way::AToB);
+    TwoCubes s(2, 5);
+    s.setGroup(2, SC_ACTIVITY_SLEEPING);
+    s.setGroup(5, SC_ACTIVITY_SLEEPING);
+    s.setPair(2, 5, SC_ACTIVITY_ACTIVE);
+    runPairSteps(s, 5, 2, {{2, 5, SC_ACTIVITY_ONE_WAY_INACTIVE, Way::AToB}});
   }
 }
 
 TEST(PairActivity, LaterSettingReplacesEarlierOneForTheDirectionsItSets) {
-  TestScene s;
-  s.addCube(1, 1, 0.0);
-  s.addCube(2, 2, 2.0);
-  ASSERT_EQ(s.manager.SetActivityPair(1, 2, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
-  s.update();
-  expectWay(s.manager, 1, 2, Way::None);
-  ASSERT_EQ(s.manager.SetActivityPair(2, 1, SC_ACTIVITY_ONE_WAY_ACTIVE), SC_NO_ERROR);
-  s.update();
-  expectWay(s.manager, 1, 2, Way::BToA);
-  ASSERT_EQ(s.manager.SetActivityPair(1, 2, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-  s.update();
-  expectWay(s.manager, 1, 2, Way::Both);
-  ASSERT_EQ(s.manager.SetActivityPair(2, 1, SC_ACTIVITY_ONE_WAY_INACTIVE), SC_NO_ERROR);
-  s.update();
-  expectWay(s.manager, 1, 2, Way::AToB);
-  ASSERT_EQ(s.manager.SetActivityPair(2, 1, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
-  s.update();
-  expectWay(s.manager, 1, 2, Way::None);
+  TwoCubes s(1, 2);
+  runPairSteps(s, 1, 2,
+               {{1, 2, SC_ACTIVITY_INACTIVE, Way::None},
+                {2, 1, SC_ACTIVITY_ONE_WAY_ACTIVE, Way::BToA},
+                {1, 2, SC_ACTIVITY_ACTIVE, Way::Both},
+                {2, 1, SC_ACTIVITY_ONE_WAY_INACTIVE, Way::AToB},
+                {2, 1, SC_ACTIVITY_INACTIVE, Way::None}});
 }
 
 TEST(PairActivity, PairSettingOverridesGroupActivityOfTable81) {
-  TestScene s;
-  s.addCube(1, 1, 0.0);
-  s.addCube(2, 2, 2.0);
-  ASSERT_EQ(s.manager.SetActivityGroup(1, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
+  TwoCubes s(1, 2);
+  s.setGroup(1, SC_ACTIVITY_INACTIVE);
   s.update();
   expectWay(s.manager, 1, 2, Way::None);
-  ASSERT_EQ(s.manager.SetActivityPair(1, 2, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-  s.update();
-  expectWay(s.manager, 1, 2, Way::Both);
+  runPairSteps(s, 1, 2, {{1, 2, SC_ACTIVITY_ACTIVE, Way::Both}});
 }
 
 TEST(PairActivity, GroupWithoutActiveObjectTakesPartInNoPairEvenWhenSetActive) {
-  TestScene s;
-  s.addCube(1, 1, 0.0);
-  s.addCube(2, 2, 2.0);
-  s.addCube(3, SC_GROUP_STATIC, 0.0, 3.0);
-  ASSERT_EQ(s.manager.SetActivityPair(1, 2, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityObject(1, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
+  ThreeCubes s;
+  s.setPair(1, 2, SC_ACTIVITY_ACTIVE);
+  s.setObject(1, SC_ACTIVITY_INACTIVE);
   s.update();
   EXPECT_EQ(s.count(), 1);  // only 2 -> static
   expectWay(s.manager, 1, 2, Way::None);
@@ -418,28 +417,22 @@ TEST(ObjectActivity, InactiveObjectIsIgnoredByCollisionDetection) {
   s.addCube(2, 2, 2.0);
   s.update();
   EXPECT_NEAR(distanceOf(s.manager, 2, 1), 1.0, 1e-9);
-  ASSERT_EQ(s.manager.SetActivityObject(1, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
+  s.setObject(1, SC_ACTIVITY_INACTIVE);
   s.update();
   EXPECT_NEAR(distanceOf(s.manager, 2, 1), 6.0, 1e-9);
   const Slot slot = find(s.manager, 2, 1);
   ASSERT_TRUE(slot.listed);
-  SCint oids[2];
-  ASSERT_EQ(s.manager.GetStatus(SC_OBJECT_ID, oids, slot.index, slot.reverse), SC_NO_ERROR);
-  EXPECT_EQ(oids[0], 2);
-  EXPECT_EQ(oids[1], 4);
-  ASSERT_EQ(s.manager.SetActivityObject(1, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
+  expectIds(s.manager, slot, SC_OBJECT_ID, {2, 4});
+  s.setObject(1, SC_ACTIVITY_ACTIVE);
   s.update();
   EXPECT_NEAR(distanceOf(s.manager, 2, 1), 1.0, 1e-9);
 }
 
 TEST(ObjectActivity, GroupWhoseOnlyObjectIsInactiveTakesPartInNoPair) {
-  TestScene s;
-  s.addCube(1, 1, 0.0);
-  s.addCube(2, 2, 2.0);
-  s.addCube(3, SC_GROUP_STATIC, 0.0, 3.0);
+  ThreeCubes s;
   s.update();
   EXPECT_EQ(s.count(), 3);
-  ASSERT_EQ(s.manager.SetActivityObject(2, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
+  s.setObject(2, SC_ACTIVITY_INACTIVE);
   s.update();
   EXPECT_EQ(s.count(), 1);
   expectWay(s.manager, 1, SC_GROUP_STATIC, Way::AToB);
@@ -466,17 +459,22 @@ struct TrackedScene : TestScene {
     update();
     EXPECT_NEAR(distanceOf(manager, 0, SC_GROUP_STATIC), -kSqrt1Over12, 1e-9);
   }
+  /// In contact, group 0 is set to `activity` (its pair leaves the list) for one
+  /// update, then active again.
+  void pauseInContact(SCenum activity) {
+    enterContact();
+    setGroup(0, activity);
+    update();
+    EXPECT_EQ(count(), 0);
+    setGroup(0, SC_ACTIVITY_ACTIVE);
+    update();
+  }
   int result() { return resultOf(manager, 0, SC_GROUP_STATIC); }
 };
 
 TEST(Tracking, SleepingGroupKeepsItsPenetrationState) {
   TrackedScene s;
-  s.enterContact();
-  ASSERT_EQ(s.manager.SetActivityGroup(0, SC_ACTIVITY_SLEEPING), SC_NO_ERROR);
-  s.update();
-  EXPECT_EQ(s.count(), 0);
-  ASSERT_EQ(s.manager.SetActivityGroup(0, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-  s.update();
+  s.pauseInContact(SC_ACTIVITY_SLEEPING);
   ASSERT_EQ(s.result(), SC_NO_ERROR);
   const double d = distanceOf(s.manager, 0, SC_GROUP_STATIC);
   EXPECT_LT(d, 0.0);
@@ -485,12 +483,7 @@ TEST(Tracking, SleepingGroupKeepsItsPenetrationState) {
 
 TEST(Tracking, PassiveGroupDropsItsPenetrationState) {
   TrackedScene s;
-  s.enterContact();
-  ASSERT_EQ(s.manager.SetActivityGroup(0, SC_ACTIVITY_PASSIVE), SC_NO_ERROR);
-  s.update();
-  EXPECT_EQ(s.count(), 0);
-  ASSERT_EQ(s.manager.SetActivityGroup(0, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
-  s.update();
+  s.pauseInContact(SC_ACTIVITY_PASSIVE);
   EXPECT_EQ(s.result(), SC_ERROR_INVALID_INITIAL_TRANSFORMATION);
 }
 
@@ -509,10 +502,10 @@ TEST(Tracking, ChangingAnObjectActivityInTheGroupDropsTheState) {
   TrackedScene s;
   s.enterContact();
   // Setting the activity an object already has changes nothing.
-  ASSERT_EQ(s.manager.SetActivityObject(3, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
+  s.setObject(3, SC_ACTIVITY_ACTIVE);
   s.update();
   EXPECT_EQ(s.result(), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.SetActivityObject(3, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
+  s.setObject(3, SC_ACTIVITY_INACTIVE);
   s.update();
   EXPECT_EQ(s.result(), SC_ERROR_INVALID_INITIAL_TRANSFORMATION);
 }
@@ -528,10 +521,7 @@ TEST(Tracking, ChangingGroupMembershipDropsTheState) {
 // --- GetStatus conventions (manual 8.10) -------------------------------------------
 
 TEST(StatusConventions, GroupIdsSwapWithReverseFlag) {
-  TestScene s;
-  s.addCube(1, 1, 0.0);
-  s.addCube(2, 2, 2.0);
-  s.addCube(3, SC_GROUP_STATIC, 0.0, 3.0);
+  ThreeCubes s;
   s.update();
   ASSERT_EQ(s.count(), 3);
   for (int i = 0; i < 3; ++i) {
@@ -581,19 +571,11 @@ TEST(StatusConventions, ObjectAndPieceIdsSwapWithReverseFlag) {
   ASSERT_TRUE(a.listed && b.listed);
   EXPECT_EQ(a.index, b.index);
   EXPECT_NE(a.reverse, b.reverse);
-  SCint oids[2], pids[2];
-  ASSERT_EQ(s.manager.GetStatus(SC_OBJECT_ID, oids, a.index, a.reverse), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.GetStatus(SC_PIECE_ID, pids, a.index, a.reverse), SC_NO_ERROR);
-  EXPECT_EQ(oids[0], 10);
-  EXPECT_EQ(oids[1], 20);
-  EXPECT_EQ(pids[0], 0);
-  EXPECT_EQ(pids[1], 1);
-  ASSERT_EQ(s.manager.GetStatus(SC_OBJECT_ID, oids, b.index, b.reverse), SC_NO_ERROR);
-  ASSERT_EQ(s.manager.GetStatus(SC_PIECE_ID, pids, b.index, b.reverse), SC_NO_ERROR);
-  EXPECT_EQ(oids[0], 20);
-  EXPECT_EQ(oids[1], 10);
-  EXPECT_EQ(pids[0], 1);
-  EXPECT_EQ(pids[1], 0);
+  // Target first: object 10's piece 0 against object 20's piece 1, and back.
+  expectIds(s.manager, a, SC_OBJECT_ID, {10, 20});
+  expectIds(s.manager, a, SC_PIECE_ID, {0, 1});
+  expectIds(s.manager, b, SC_OBJECT_ID, {20, 10});
+  expectIds(s.manager, b, SC_PIECE_ID, {1, 0});
 }
 
 TEST(StatusConventions, SeparatedDirectionsReportPositiveDistanceNormalAndPoints) {

@@ -77,6 +77,20 @@ std::vector<double> snapshot(SCSceneManager& m) {
   return s;
 }
 
+/// Outputs of calls that must fail: each keeps its -3 (they write nothing on error).
+struct Outputs {
+  SCint i = -3;
+  SCenum e = -3;
+  float f = -3.0f;
+  double d = -3.0;
+  void expectUntouched() const {
+    EXPECT_EQ(i, -3);
+    EXPECT_EQ(e, -3);
+    EXPECT_EQ(f, -3.0f);
+    EXPECT_EQ(d, -3.0);
+  }
+};
+
 /// Group 0 (object 1) and group 1 (object 2) one apart along x, object 3 static
 /// above group 0: three pairs, (0,1) both ways, each group -> static.
 struct Baseline {
@@ -218,13 +232,11 @@ TEST(SceneMisuse, UnknownEnumValuesFail) {
   EXPECT_NE(b.manager.SetAttributeEnum(SC_SCENE_MANAGER_ROTATION_MODE, kBogusEnum), SC_NO_ERROR);
   EXPECT_NE(b.manager.SetAttributeEnum(SC_SCENE_MANAGER_ROTATION_MODE, SC_ACTIVITY_ACTIVE),
             SC_NO_ERROR);
-  SCint i = -3;
-  double d = -3.0;
-  EXPECT_EQ(b.manager.GetStatus(kBogusEnum, &i), SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.GetStatus(kBogusEnum, &i, 0, false), SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.GetStatus(kBogusEnum, &d, 0, false), SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(i, -3);
-  EXPECT_EQ(d, -3.0);
+  Outputs kept;
+  EXPECT_EQ(b.manager.GetStatus(kBogusEnum, &kept.i), SC_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(b.manager.GetStatus(kBogusEnum, &kept.i, 0, false), SC_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(b.manager.GetStatus(kBogusEnum, &kept.d, 0, false), SC_ERROR_INVALID_ARGUMENT);
+  kept.expectUntouched();
   b.expectUnchanged();
   // A new object of an unknown type accepts no geometry and joins no scene.
   SCObject bogus(kBogusEnum);
@@ -264,18 +276,14 @@ TEST(SceneMisuse, WronglyTypedAttributeSetterIsInvalidArgument) {
   EXPECT_EQ(b.manager.SetAttributeEnum(SC_SCENE_MANAGER_MAX_ITERATION, 10),
             SC_ERROR_INVALID_ARGUMENT);
   // The getters are typed the same way and write nothing on error.
-  SCint i = -3;
-  SCenum e = -3;
-  double d = -3.0;
-  EXPECT_EQ(b.manager.GetAttributeInteger(SC_SCENE_MANAGER_SAFETY_COEFFICIENT, &i),
+  Outputs out;
+  EXPECT_EQ(b.manager.GetAttributeInteger(SC_SCENE_MANAGER_SAFETY_COEFFICIENT, &out.i),
             SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.GetAttributeEnum(SC_SCENE_MANAGER_FORCE_STIFFNESS, &e),
+  EXPECT_EQ(b.manager.GetAttributeEnum(SC_SCENE_MANAGER_FORCE_STIFFNESS, &out.e),
             SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.GetAttributeDouble(SC_SCENE_MANAGER_MAX_ITERATION, &d),
+  EXPECT_EQ(b.manager.GetAttributeDouble(SC_SCENE_MANAGER_MAX_ITERATION, &out.d),
             SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(i, -3);
-  EXPECT_EQ(e, -3);
-  EXPECT_EQ(d, -3.0);
+  out.expectUntouched();
   b.expectUnchanged();
 }
 
@@ -357,14 +365,13 @@ TEST(SceneMisuse, AddTrianglesInASceneIsInvalidOperation) {
 
 TEST(SceneMisuse, GetStatusOutOfRangeNullOrWrongTypeIsInvalidArgument) {
   Baseline b;
-  SCint i = -3;
-  float f = -3.0f;
-  double d = -3.0;
+  Outputs out;
   for (SCint index : {-1, 3, 1000}) {
-    EXPECT_EQ(b.manager.GetStatus(SC_STATUS_RESULT, &i, index, false), SC_ERROR_INVALID_ARGUMENT);
-    EXPECT_EQ(b.manager.GetStatus(SC_GROUP_ID, &i, index, true), SC_ERROR_INVALID_ARGUMENT);
-    EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, &f, index, false), SC_ERROR_INVALID_ARGUMENT);
-    EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, &d, index, true), SC_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(b.manager.GetStatus(SC_STATUS_RESULT, &out.i, index, false),
+              SC_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(b.manager.GetStatus(SC_GROUP_ID, &out.i, index, true), SC_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, &out.f, index, false), SC_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, &out.d, index, true), SC_ERROR_INVALID_ARGUMENT);
   }
   EXPECT_EQ(b.manager.GetStatus(SC_STATUS_COUNT, static_cast<SCint*>(nullptr)),
             SC_ERROR_INVALID_ARGUMENT);
@@ -375,14 +382,12 @@ TEST(SceneMisuse, GetStatusOutOfRangeNullOrWrongTypeIsInvalidArgument) {
   EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, static_cast<SCdouble*>(nullptr), 0, false),
             SC_ERROR_INVALID_ARGUMENT);
   // Value type not matching the status type.
-  EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, &i, 0, false), SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, &i), SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.GetStatus(SC_GROUP_ID, &d, 0, false), SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.GetStatus(SC_STATUS_RESULT, &f, 0, false), SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(b.manager.GetStatus(SC_STATUS_COUNT, &d, 0, false), SC_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(i, -3);
-  EXPECT_EQ(f, -3.0f);
-  EXPECT_EQ(d, -3.0);
+  EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, &out.i, 0, false), SC_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(b.manager.GetStatus(SC_DISTANCE, &out.i), SC_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(b.manager.GetStatus(SC_GROUP_ID, &out.d, 0, false), SC_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(b.manager.GetStatus(SC_STATUS_RESULT, &out.f, 0, false), SC_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(b.manager.GetStatus(SC_STATUS_COUNT, &out.d, 0, false), SC_ERROR_INVALID_ARGUMENT);
+  out.expectUntouched();
   b.expectUnchanged();
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sc.h"
+#include "support/placements.h"
 
 namespace {
 
@@ -61,30 +62,18 @@ bool bitwiseEqual(const std::vector<std::vector<double>>& a,
 }
 
 template <class Real>
-struct Precision;
-template <>
-struct Precision<double> {
-  static constexpr double kRelTol = 1e-12;
-};
-template <>
-struct Precision<float> {
-  static constexpr double kRelTol = 1e-6;  // ~8 float ulps
-};
-
-template <class Real>
 class ScObjectTransformation : public ::testing::Test {
  protected:
-  static double tol(double magnitude) { return Precision<Real>::kRelTol * (1.0 + std::abs(magnitude)); }
+  static double tol(double magnitude) { return sc::test::realTol<Real>(magnitude); }
 
   static SCint set(SCObject& o, SCenum type, const std::vector<double>& values) {
-    const std::vector<Real> in(values.begin(), values.end());
-    return o.SetTransformation(type, in.data());
+    return o.SetTransformation(type, sc::test::convert<Real>(values).data());
   }
 
   static std::vector<double> get(const SCObject& o, SCenum type) {
     std::vector<Real> out(arraySize(type), Real(-12345));
     EXPECT_EQ(o.GetTransformation(type, out.data()), SC_NO_ERROR) << "type " << type;
-    return std::vector<double>(out.begin(), out.end());
+    return sc::test::convert<double>(out);
   }
 
   static void expectGet(const SCObject& o, SCenum type, const std::vector<double>& expected) {
@@ -122,14 +111,7 @@ class ScObjectTransformation : public ::testing::Test {
   }
 };
 
-struct RealNames {
-  template <class T>
-  static std::string GetName(int) {
-    return std::is_same_v<T, float> ? "Float" : "Double";
-  }
-};
-using Reals = ::testing::Types<float, double>;
-TYPED_TEST_SUITE(ScObjectTransformation, Reals, RealNames);
+TYPED_TEST_SUITE(ScObjectTransformation, sc::test::Reals, sc::test::RealNames);
 
 TYPED_TEST(ScObjectTransformation, NewObjectIsAtTheWorldOriginUnrotated) {
   SCObject o(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
@@ -149,52 +131,39 @@ TYPED_TEST(ScObjectTransformation, StartStateIsAsBuilt) {
 
 // ---- Table 7-1 -------------------------------------------------------------------
 
-TYPED_TEST(ScObjectTransformation, Table71Row1OriginSetsWorldCenter) {
-  SCObject o(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
-  this->makeStartState(o);
-  ASSERT_EQ(this->set(o, SC_POSITION_ORIGIN, {10, 20, 30}), SC_NO_ERROR);
-  this->expectGet(o, SC_POSITION_WORLD_CENTER, {5, 24, 36});  // (10,20,30) + R(4,5,6)
-  this->expectGet(o, SC_POSITION_LOCAL_CENTER, {4, 5, 6});
-  this->expectGet(o, SC_POSITION_ORIGIN, {10, 20, 30});
-  this->expectQuaternion(o, {kH, 0, 0, kH});
-}
+/// Rows 1-5 of Table 7-1: a position set on the start state, and the world centre,
+/// local centre and origin read back after it (the orientation stays).
+struct PositionRow {
+  int row;
+  SCenum type;
+  std::vector<double> value, world_center, local_center, origin;
+};
 
-TYPED_TEST(ScObjectTransformation, Table71Row2WorldCenterSetsWorldCenter) {
-  SCObject o(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
-  this->makeStartState(o);
-  ASSERT_EQ(this->set(o, SC_POSITION_WORLD_CENTER, {7, 8, 9}), SC_NO_ERROR);
-  this->expectGet(o, SC_POSITION_WORLD_CENTER, {7, 8, 9});
-  this->expectGet(o, SC_POSITION_LOCAL_CENTER, {4, 5, 6});
-  this->expectGet(o, SC_POSITION_ORIGIN, {12, 4, 3});  // (7,8,9) - (-5,4,6)
-}
+const PositionRow kPositionRows[] = {
+    // The origin sets the world centre: (10,20,30) + R(4,5,6).
+    {1, SC_POSITION_ORIGIN, {10, 20, 30}, {5, 24, 36}, {4, 5, 6}, {10, 20, 30}},
+    // The world centre: origin (7,8,9) - (-5,4,6).
+    {2, SC_POSITION_WORLD_CENTER, {7, 8, 9}, {7, 8, 9}, {4, 5, 6}, {12, 4, 3}},
+    // The local centre moves the world centre only: R((1,1,1) - (4,5,6)) + (1,2,3).
+    {3, SC_POSITION_LOCAL_CENTER, {1, 1, 1}, {5, -1, -2}, {4, 5, 6}, {10, -5, -8}},
+    // A new world centre moves the local centre, keeps the origin:
+    // R^-1((7,8,9) - (1,2,3)) + (4,5,6) = (6,-6,6) + (4,5,6).
+    {4, SC_POSITION_NEW_WORLD_CENTER, {7, 8, 9}, {7, 8, 9}, {10, -1, 12}, {6, -2, -3}},
+    // A new local centre moves the world centre, keeps the origin.
+    {5, SC_POSITION_NEW_LOCAL_CENTER, {1, 1, 1}, {5, -1, -2}, {1, 1, 1}, {6, -2, -3}},
+};
 
-TYPED_TEST(ScObjectTransformation, Table71Row3LocalCenterMovesWorldCenterOnly) {
-  SCObject o(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
-  this->makeStartState(o);
-  ASSERT_EQ(this->set(o, SC_POSITION_LOCAL_CENTER, {1, 1, 1}), SC_NO_ERROR);
-  // R((1,1,1) - (4,5,6)) + (1,2,3) = (4,-3,-5) + (1,2,3).
-  this->expectGet(o, SC_POSITION_WORLD_CENTER, {5, -1, -2});
-  this->expectGet(o, SC_POSITION_LOCAL_CENTER, {4, 5, 6});
-  this->expectGet(o, SC_POSITION_ORIGIN, {10, -5, -8});
-}
-
-TYPED_TEST(ScObjectTransformation, Table71Row4NewWorldCenterMovesLocalCenterKeepsOrigin) {
-  SCObject o(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
-  this->makeStartState(o);
-  ASSERT_EQ(this->set(o, SC_POSITION_NEW_WORLD_CENTER, {7, 8, 9}), SC_NO_ERROR);
-  // R^-1((7,8,9) - (1,2,3)) + (4,5,6) = (6,-6,6) + (4,5,6).
-  this->expectGet(o, SC_POSITION_LOCAL_CENTER, {10, -1, 12});
-  this->expectGet(o, SC_POSITION_WORLD_CENTER, {7, 8, 9});
-  this->expectGet(o, SC_POSITION_ORIGIN, {6, -2, -3});
-}
-
-TYPED_TEST(ScObjectTransformation, Table71Row5NewLocalCenterMovesWorldCenterKeepsOrigin) {
-  SCObject o(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
-  this->makeStartState(o);
-  ASSERT_EQ(this->set(o, SC_POSITION_NEW_LOCAL_CENTER, {1, 1, 1}), SC_NO_ERROR);
-  this->expectGet(o, SC_POSITION_LOCAL_CENTER, {1, 1, 1});
-  this->expectGet(o, SC_POSITION_WORLD_CENTER, {5, -1, -2});
-  this->expectGet(o, SC_POSITION_ORIGIN, {6, -2, -3});
+TYPED_TEST(ScObjectTransformation, Table71PositionRows) {
+  for (const PositionRow& r : kPositionRows) {
+    SCOPED_TRACE(testing::Message() << "Table 7-1 row " << r.row);
+    SCObject o(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
+    this->makeStartState(o);
+    ASSERT_EQ(this->set(o, r.type, r.value), SC_NO_ERROR);
+    this->expectGet(o, SC_POSITION_WORLD_CENTER, r.world_center);
+    this->expectGet(o, SC_POSITION_LOCAL_CENTER, r.local_center);
+    this->expectGet(o, SC_POSITION_ORIGIN, r.origin);
+    this->expectQuaternion(o, {kH, 0, 0, kH});
+  }
 }
 
 TYPED_TEST(ScObjectTransformation, Table71Row6QuaternionIsScalarFirstAndNormalised) {
@@ -341,9 +310,7 @@ TYPED_TEST(ScObjectTransformation, UnknownTypeIsInvalidArgument) {
 }
 
 TYPED_TEST(ScObjectTransformation, NaNOrInfinityAnywhereIsInvalidArgument) {
-  const TypeParam bad[] = {std::numeric_limits<TypeParam>::quiet_NaN(),
-                           std::numeric_limits<TypeParam>::infinity(),
-                           -std::numeric_limits<TypeParam>::infinity()};
+  const std::vector<TypeParam> bad = sc::test::nonFinite<TypeParam>();
   for (SCenum type : kAllTypes) {
     std::vector<TypeParam> valid;
     switch (type) {

@@ -15,6 +15,7 @@
 #include "sc_support/off_mesh.h"
 #include "smartcollision/collision.h"
 #include "support/brute_force.h"
+#include "support/placements.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -26,13 +27,6 @@ ModelPtr modelOf(ModelKind kind, const MeshData& mesh) {
   EXPECT_TRUE(piece.ok()) << piece.status().message();
   if (!piece.ok()) return nullptr;
   return std::make_shared<Model>(kind, std::vector<PiecePtr>{piece.value()});
-}
-
-Placement placementOf(const Quat& q, const Vec3& center) {
-  Placement p;
-  p.orientation = q;
-  p.world_center = center;
-  return p;
 }
 
 bool convexOverlap(const ConvexShape& a, const Placement& pa, const ConvexShape& b,

@@ -18,6 +18,7 @@
 #include "sc_support/off_mesh.h"
 #include "smartcollision/collision.h"
 #include "support/meshes.h"
+#include "support/placements.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -27,6 +28,8 @@
 
 namespace sc {
 namespace {
+
+using test::placementOf;
 
 constexpr int kPaths = test::caseCount(200, 12);
 /// Tolerance of the meshes scaled to a largest box side of 1.
@@ -128,13 +131,6 @@ std::uint64_t seedOf(const PairCase& pc) {
     for (const char* c = name; *c != 0; ++c)
       h = (h ^ static_cast<unsigned char>(*c)) * 1099511628211ull;
   return h;
-}
-
-Placement placementOf(const Quat& q, const Vec3& center) {
-  Placement p;
-  p.orientation = q;
-  p.world_center = center;
-  return p;
 }
 
 /// Smallest push t in [0, tolerance] along n that separates the contact pose per FCL

@@ -15,6 +15,7 @@
 #include "preprocess/convex_hull.h"
 #include "smartcollision/collision.h"
 #include "support/brute_force.h"
+#include "support/placements.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -41,13 +42,6 @@ ModelPtr boxModel(const Vec3& half) {
   EXPECT_TRUE(piece.ok()) << piece.status().message();
   if (!piece.ok()) return nullptr;
   return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
-Placement placementOf(const Quat& q, const Vec3& center) {
-  Placement p;
-  p.orientation = q;
-  p.world_center = center;
-  return p;
 }
 
 double potential(const DirectedResult& r, const SceneSettings& s) {

@@ -15,6 +15,7 @@
 #include "sc.h"
 #include "smartcollision/collision.h"
 #include "support/meshes.h"
+#include "support/sc_results.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -99,15 +100,6 @@ std::vector<Answer> runPairTracker(const Sweep& sweep, double s, double fraction
                    r[0].contact_position / s});
   }
   return out;
-}
-
-SCint addPiece(SCObject& o, const MeshData& m) {
-  std::vector<double> v;
-  for (const Vec3& p : m.vertices) v.insert(v.end(), {p.x(), p.y(), p.z()});
-  std::vector<int> t;
-  for (const Tri& f : m.triangles) t.insert(t.end(), {f[0], f[1], f[2]});
-  return o.AddTriangles(v.data(), static_cast<SCint>(m.vertices.size()), t.data(),
-                        static_cast<SCint>(m.triangles.size()));
 }
 
 /// Sets a pose through sc.h: orientation {s, vx, vy, vz}, then origin.
@@ -319,17 +311,11 @@ TEST(ScaleLimits, PiecesOutsideTheSupportedExtentsAreRefused) {
     EXPECT_EQ(addPiece(probe, boxMesh(Vec3::Constant(0.5))), SC_NO_ERROR);
     const double origin[3] = {3, 0, 0};
     EXPECT_EQ(probe.SetTransformation(SC_POSITION_ORIGIN, origin), SC_NO_ERROR);
-    SCSceneManager scene(SC_SCENE_MANAGER_CLOSED_POLYHEDRA);
-    EXPECT_EQ(scene.AddObject(1, &probe), SC_NO_ERROR);
-    EXPECT_EQ(scene.AddObject(2, &o), SC_NO_ERROR);
-    EXPECT_EQ(scene.AddObjectToGroup(0, 1), SC_NO_ERROR);
-    EXPECT_EQ(scene.UpdateStatus(), SC_NO_ERROR);
+    PairScene scene(probe, o);
     SCint pieces[2] = {-1, -1};
-    double d = 0.0;
-    EXPECT_EQ(scene.GetStatus(SC_PIECE_ID, pieces, 0, false), SC_NO_ERROR);
-    EXPECT_EQ(scene.GetStatus(SC_DISTANCE, &d, 0, false), SC_NO_ERROR);
+    EXPECT_EQ(scene.manager.GetStatus(SC_PIECE_ID, pieces, 0, false), SC_NO_ERROR);
     EXPECT_EQ(pieces[1], 0);
-    EXPECT_NEAR(d, 2.0, 1e-12);
+    EXPECT_NEAR(scene.distance(), 2.0, 1e-12);
   }
 }
 

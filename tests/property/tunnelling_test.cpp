@@ -12,6 +12,7 @@
 #include "penetration/result_invariants.h"
 #include "smartcollision/collision.h"
 #include "support/brute_force.h"
+#include "support/placements.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -38,13 +39,6 @@ MeshData wallMesh(ModelKind kind) {
   quad.vertices = {Vec3(-s, -s, 0), Vec3(s, -s, 0), Vec3(s, s, 0), Vec3(-s, s, 0)};
   quad.triangles = {Tri{0, 1, 2}, Tri{0, 2, 3}};
   return quad;
-}
-
-Placement placementOf(const Quat& q, const Vec3& center) {
-  Placement p;
-  p.orientation = q;
-  p.world_center = center;
-  return p;
 }
 
 struct Wall {

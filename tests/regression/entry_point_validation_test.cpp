@@ -15,6 +15,7 @@
 #include "sc.h"
 #include "smartcollision/collision.h"
 #include "smartcollision/scene.h"
+#include "support/sc_results.h"
 #include "support/shapes.h"
 
 namespace sc::test {
@@ -165,26 +166,21 @@ TEST(EntryPointValidation, FloatStatusRefusesValuesBeyondFloatRange) {
   ASSERT_EQ(far_object.AddTriangles(v, 4, t, 4), SC_NO_ERROR);
   const double far_origin[3] = {2e99, 0, 0};
   ASSERT_EQ(far_object.SetTransformation(SC_POSITION_ORIGIN, far_origin), SC_NO_ERROR);
-  SCSceneManager scene(SC_SCENE_MANAGER_CLOSED_POLYHEDRA);
-  ASSERT_EQ(scene.AddObject(1, &near_object), SC_NO_ERROR);
-  ASSERT_EQ(scene.AddObject(2, &far_object), SC_NO_ERROR);
-  ASSERT_EQ(scene.AddObjectToGroup(0, 1), SC_NO_ERROR);
-  ASSERT_EQ(scene.UpdateStatus(), SC_NO_ERROR);
-  double d = 0.0;
-  ASSERT_EQ(scene.GetStatus(SC_DISTANCE, &d, 0, false), SC_NO_ERROR);
-  EXPECT_NEAR(d, 2e99, 1e85);
+  PairScene scene(near_object, far_object);
+  EXPECT_NEAR(scene.distance(), 2e99, 1e85);
   // As GetTransformation does, a float read of a value beyond float's range is refused.
   float position[3] = {7, 7, 7};
   EXPECT_EQ(far_object.GetTransformation(SC_POSITION_ORIGIN, position), SC_ERROR_INVALID_ARGUMENT);
   float f = 7.0f;
-  EXPECT_EQ(scene.GetStatus(SC_DISTANCE, &f, 0, false), SC_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(scene.manager.GetStatus(SC_DISTANCE, &f, 0, false), SC_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(f, 7.0f) << "a refused read writes nothing";
   float point[3] = {7, 7, 7};
-  EXPECT_EQ(scene.GetStatus(SC_POINT_ON_OPPONENT, point, 0, false), SC_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(scene.manager.GetStatus(SC_POINT_ON_OPPONENT, point, 0, false),
+            SC_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(point[0], 7.0f);
   // Values within range still read as float.
   float normal[3] = {};
-  EXPECT_EQ(scene.GetStatus(SC_CONTACT_NORMAL, normal, 0, false), SC_NO_ERROR);
+  EXPECT_EQ(scene.manager.GetStatus(SC_CONTACT_NORMAL, normal, 0, false), SC_NO_ERROR);
   EXPECT_NEAR(std::abs(normal[0]), 1.0f, 1e-6f);
 }
 

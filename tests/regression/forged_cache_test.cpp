@@ -19,6 +19,7 @@
 
 #include "preprocess/cache_file.h"
 #include "sc.h"
+#include "support/sc_results.h"
 #include "support/shapes.h"
 #include "support/temp_files.h"
 
@@ -73,13 +74,16 @@ class ForgedCache : public ::testing::Test {
   std::vector<std::uint8_t> valid_;
 };
 
+/// Every hull ten times larger: still bounding, no longer the input's.
+void scaleHulls(detail::PieceData& data) {
+  for (detail::ConvexPolytope& p : data.patches)
+    for (Vec3& v : p.vertices) v *= 10.0;
+  for (detail::ConvexPolytope& p : data.hierarchy.hulls)
+    for (Vec3& v : p.vertices) v *= 10.0;
+}
+
 TEST_F(ForgedCache, ScaledHullsWithARecomputedChecksumAreRefused) {
-  ASSERT_NO_FATAL_FAILURE(writeForged([](detail::PieceData& data) {
-    for (detail::ConvexPolytope& p : data.patches)
-      for (Vec3& v : p.vertices) v *= 10.0;
-    for (detail::ConvexPolytope& p : data.hierarchy.hulls)
-      for (Vec3& v : p.vertices) v *= 10.0;
-  }));
+  ASSERT_NO_FATAL_FAILURE(writeForged(scaleHulls));
   ASSERT_NO_FATAL_FAILURE(expectRefused());
 }
 
@@ -112,38 +116,16 @@ TEST_F(ForgedCache, AFaceNamingAnotherTriangleIsRefused) {
 }
 
 TEST_F(ForgedCache, ThroughScApiTheForgedFileGivesScErrorFileAndTheRightDistance) {
-  ASSERT_NO_FATAL_FAILURE(writeForged([](detail::PieceData& data) {
-    for (detail::ConvexPolytope& p : data.patches)
-      for (Vec3& v : p.vertices) v *= 10.0;
-    for (detail::ConvexPolytope& p : data.hierarchy.hulls)
-      for (Vec3& v : p.vertices) v *= 10.0;
-  }));
-  std::vector<double> xyz;
-  for (const Vec3& v : mesh_.vertices) xyz.insert(xyz.end(), {v.x(), v.y(), v.z()});
-  std::vector<int> ids;
-  for (const Tri& t : mesh_.triangles) ids.insert(ids.end(), {t[0], t[1], t[2]});
+  ASSERT_NO_FATAL_FAILURE(writeForged(scaleHulls));
   SCObject torus(SC_OBJECT_TYPE_CLOSED_POLYHEDRON), probe(SC_OBJECT_TYPE_CLOSED_POLYHEDRON);
-  EXPECT_EQ(torus.AddTriangles(xyz.data(), static_cast<int>(mesh_.vertices.size()), ids.data(),
-                               static_cast<int>(mesh_.triangles.size()), path_.c_str()),
-            SC_ERROR_FILE);
-  const MeshData box = boxMesh(Vec3(0.5, 0.5, 0.5));
-  std::vector<double> bxyz;
-  for (const Vec3& v : box.vertices) bxyz.insert(bxyz.end(), {v.x(), v.y(), v.z()});
-  std::vector<int> bids;
-  for (const Tri& t : box.triangles) bids.insert(bids.end(), {t[0], t[1], t[2]});
-  ASSERT_EQ(probe.AddTriangles(bxyz.data(), 8, bids.data(), 12), SC_NO_ERROR);
+  EXPECT_EQ(addPiece(torus, mesh_, path_.c_str()), SC_ERROR_FILE);
+  ASSERT_EQ(addPiece(probe, boxMesh(Vec3(0.5, 0.5, 0.5))), SC_NO_ERROR);
   // The torus (outer radius 1.3) in the static group, the box 3 units from its axis.
   const double at[3] = {4.8, 0, 0};
   ASSERT_EQ(probe.SetTransformation(SC_POSITION_ORIGIN, at), SC_NO_ERROR);
-  SCSceneManager scene(SC_SCENE_MANAGER_CLOSED_POLYHEDRA);
-  ASSERT_EQ(scene.AddObject(1, &torus), SC_NO_ERROR);
-  ASSERT_EQ(scene.AddObject(2, &probe), SC_NO_ERROR);
-  ASSERT_EQ(scene.AddObjectToGroup(0, 2), SC_NO_ERROR);
-  ASSERT_EQ(scene.UpdateStatus(), SC_NO_ERROR);
-  double d = 0.0;
-  ASSERT_EQ(scene.GetStatus(SC_DISTANCE, &d, 0, false), SC_NO_ERROR);
+  PairScene scene(probe, torus);
   // The torus's outermost vertices lie at 1.3 on the x axis: the box's face at 4.3.
-  EXPECT_NEAR(d, 3.0, 1e-9);
+  EXPECT_NEAR(scene.distance(), 3.0, 1e-9);
 }
 
 }  // namespace

@@ -38,11 +38,8 @@ double lowestCorner(const Vec3& position, const Quat& orientation) {
 }
 
 TEST(NoneModeImpact, ContactConfigurationTouchesTheFloorInEveryMode) {
-  const ModelPtr bar = boxModel(kHalf), slab = boxModel(Vec3(3, 0.5, 3));
-  ASSERT_TRUE(bar && slab);
-  const Part a{bar.get(), Rigid(), 1}, b{slab.get(), Rigid(), 2};
-  Placement floor;
-  floor.world_center = Vec3(0, -0.5, 0);
+  const BarOnSlab scene(kHalf);
+  ASSERT_TRUE(scene.ok());
   const double gap = 1e-3;
   for (const RotationMode mode :
        {RotationMode::None, RotationMode::Input, RotationMode::Free, RotationMode::Mix}) {
@@ -52,11 +49,10 @@ TEST(NoneModeImpact, ContactConfigurationTouchesTheFloorInEveryMode) {
     settings.tolerance = 1e-4;  // well below the 1 mm the free pose is away
     PairTracker tracker;
     DirectedResult out[2];
-    tracker.update({&a, 1, barAt(0.0, gap)}, {&b, 1, floor}, {true, false}, settings, out);
+    scene.query(tracker, barAt(0.0, gap), settings, out);
     ASSERT_EQ(out[0].code, ErrorCode::Ok);
     ASSERT_NEAR(out[0].distance, gap, 1e-12);
-    tracker.update({&a, 1, barAt(-5.0 * kPi / 180.0, gap)}, {&b, 1, floor}, {true, false}, settings,
-                   out);
+    scene.query(tracker, barAt(-5.0 * kPi / 180.0, gap), settings, out);
     ASSERT_EQ(out[0].code, ErrorCode::Ok);
     ASSERT_TRUE(out[0].penetrating());
     const double height = lowestCorner(out[0].contact_position, out[0].contact_orientation);
@@ -66,23 +62,20 @@ TEST(NoneModeImpact, ContactConfigurationTouchesTheFloorInEveryMode) {
 }
 
 TEST(NoneModeImpact, NoneKeepsTheOrientationAtTheTimeOfImpact) {
-  const ModelPtr bar = boxModel(kHalf), slab = boxModel(Vec3(3, 0.5, 3));
-  ASSERT_TRUE(bar && slab);
-  const Part a{bar.get(), Rigid(), 1}, b{slab.get(), Rigid(), 2};
-  Placement floor;
-  floor.world_center = Vec3(0, -0.5, 0);
+  const BarOnSlab scene(kHalf);
+  ASSERT_TRUE(scene.ok());
   SceneSettings settings;
   settings.rotation_mode = RotationMode::None;
   settings.tolerance = 1e-4;
   PairTracker tracker;
   DirectedResult out[2];
   const double gap = 1e-3, end = -5.0 * kPi / 180.0;
-  tracker.update({&a, 1, barAt(0.0, gap)}, {&b, 1, floor}, {true, false}, settings, out);
+  scene.query(tracker, barAt(0.0, gap), settings, out);
   // Deeper frames keep the impact orientation: the far end (2 m from the pivot)
   // reaches the floor at asin(gap / 2).
   const double impact = -std::asin(gap / 2.0);
   for (const double angle : {end, 2.0 * end, end}) {
-    tracker.update({&a, 1, barAt(angle, gap)}, {&b, 1, floor}, {true, false}, settings, out);
+    scene.query(tracker, barAt(angle, gap), settings, out);
     ASSERT_TRUE(out[0].penetrating());
     const double kept = Eigen::AngleAxisd(out[0].contact_orientation).angle();
     // The orientation is found to within the tolerance at the far end, 2 m away.

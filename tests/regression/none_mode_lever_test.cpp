@@ -26,11 +26,8 @@ Placement leverAt(double angle) {
 }
 
 TEST(NoneModeLever, FreezesTheImpactOrientation) {
-  const ModelPtr bar = boxModel(Vec3(1.0, 0.05, 0.05)), slab = boxModel(Vec3(3, 0.5, 3));
-  ASSERT_TRUE(bar && slab);
-  const Part a{bar.get(), Rigid(), 1}, b{slab.get(), Rigid(), 2};
-  Placement ground;
-  ground.world_center = Vec3(0, -0.5, 0);
+  const BarOnSlab scene(Vec3(1.0, 0.05, 0.05));
+  ASSERT_TRUE(scene.ok());
   SceneSettings settings;
   settings.rotation_mode = RotationMode::None;
   PairTracker tracker;
@@ -39,7 +36,7 @@ TEST(NoneModeLever, FreezesTheImpactOrientation) {
   const double touch = -std::asin(0.01 / 2.0);
   for (int step = 0; step <= 60; ++step) {
     const double angle = (10.0 - 0.25 * step) * kPi / 180.0;
-    tracker.update({&a, 1, leverAt(angle)}, {&b, 1, ground}, {true, false}, settings, out);
+    scene.query(tracker, leverAt(angle), settings, out);
     ASSERT_EQ(out[0].code, ErrorCode::Ok) << "step " << step;
     if (angle > touch + 1e-9) {
       EXPECT_FALSE(out[0].penetrating()) << "free pose reported penetrating at step " << step;

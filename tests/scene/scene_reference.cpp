@@ -7,20 +7,6 @@
 
 namespace sc::test {
 
-Aabb worldBox(const Aabb& box, const Rigid& world_from_local) {
-  if (box.empty()) return box;
-  const Vec3 c = world_from_local * Vec3(0.5 * (box.min + box.max));
-  const Vec3 e = world_from_local.rotation.cwiseAbs() * Vec3(0.5 * (box.max - box.min));
-  Aabb out;
-  out.min = c - e;
-  out.max = c + e;
-  return out;
-}
-
-double boxGap(const Aabb& a, const Aabb& b) {
-  return (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero()).norm();
-}
-
 std::vector<int> ReferenceScene::objectIds() const {
   std::vector<int> ids;
   for (const auto& [id, o] : objects_) ids.push_back(id);
@@ -42,12 +28,7 @@ Rigid ReferenceScene::worldFromModel(const Object& o) const {
 
 Placement ReferenceScene::placementOf(const Object& o) const {
   if (o.group == kStaticGroup) return o.own;
-  const Rigid w = worldFromModel(o);
-  Placement p;
-  p.local_center = o.own.local_center;
-  p.orientation = Quat(w.rotation).normalized();
-  p.world_center = w * p.local_center;
-  return p;
+  return Placement::fromRigid(worldFromModel(o), o.own.local_center);
 }
 
 void ReferenceScene::forgetPairsOf(int gid) {
@@ -161,19 +142,10 @@ bool ReferenceScene::setGroupActivity(int gid, Activity activity) {
 
 bool ReferenceScene::setPairActivity(int target, int opponent, PairActivity activity) {
   if (!groups_.count(target) || !groups_.count(opponent) || target == opponent) return false;
-  switch (activity) {
-    case PairActivity::Active:
-    case PairActivity::Inactive:
-      overrides_[{target, opponent}] = activity == PairActivity::Active;
-      overrides_[{opponent, target}] = activity == PairActivity::Active;
-      break;
-    case PairActivity::OneWayActive:
-      overrides_[{target, opponent}] = true;
-      break;
-    case PairActivity::OneWayInactive:
-      overrides_[{target, opponent}] = false;
-      break;
-  }
+  const bool on = activity == PairActivity::Active || activity == PairActivity::OneWayActive;
+  overrides_[{target, opponent}] = on;
+  if (activity == PairActivity::Active || activity == PairActivity::Inactive)
+    overrides_[{opponent, target}] = on;
   return true;
 }
 
@@ -188,9 +160,10 @@ bool ReferenceScene::computes(int target, int opponent) const {
 
 bool ReferenceScene::withinRange(int g0, int g1) const {
   const Group& a = groups_.at(g0);
-  if (g1 != kStaticGroup) return boxGap(a.bounds, groups_.at(g1).bounds) <= settings_.max_distance;
+  if (g1 != kStaticGroup)
+    return boxDistance(a.bounds, groups_.at(g1).bounds) <= settings_.max_distance;
   for (const Aabb& box : groups_.at(kStaticGroup).object_boxes) {
-    if (boxGap(a.bounds, box) <= settings_.max_distance) return true;
+    if (boxDistance(a.bounds, box) <= settings_.max_distance) return true;
   }
   return false;
 }
@@ -210,9 +183,9 @@ void ReferenceScene::rebuildGroups() {
       part.id = id;
       g.parts.push_back(part);
       if (gid == kStaticGroup)
-        g.object_boxes.push_back(worldBox(o.model->bounds(), part.group_from_model));
+        g.object_boxes.push_back(transformBox(o.model->bounds(), part.group_from_model));
       else
-        g.bounds.extend(worldBox(o.model->bounds(), world_from_group * part.group_from_model));
+        g.bounds.extend(transformBox(o.model->bounds(), world_from_group * part.group_from_model));
     }
   }
 }

@@ -79,9 +79,4 @@ class ReferenceScene {
   std::vector<PairStatus> pairs_;
 };
 
-/// World box of a local box under a rigid transform (the scene's formula).
-Aabb worldBox(const Aabb& local, const Rigid& world_from_local);
-/// Euclidean distance between two boxes.
-double boxGap(const Aabb& a, const Aabb& b);
-
 }  // namespace sc::test

@@ -8,7 +8,10 @@
 
 #include "geometry/convex_polytope.h"
 #include "sc_support/sample_meshes.h"
+#include "smartcollision/group.h"
 #include "smartcollision/model.h"
+#include "smartcollision/pair_tracker.h"
+#include "smartcollision/placement.h"
 #include "support/test_support.h"
 
 namespace sc::test {
@@ -21,6 +24,28 @@ MeshData boxMesh(const Vec3& half_extents);
 /// A one-piece closed-polyhedron model of boxMesh(half_extents); null if the piece
 /// cannot be built.
 ModelPtr boxModel(const Vec3& half_extents);
+/// A bar (a box of half extents `bar_half`, part 1) over a 6 m x 1 m x 6 m slab (part
+/// 2) whose top face is y = 0: the scene of the bar-on-floor tests.
+struct BarOnSlab {
+  explicit BarOnSlab(const Vec3& bar_half)
+      : bar(boxModel(bar_half)),
+        slab(boxModel(Vec3(3, 0.5, 3))),
+        a{bar.get(), Rigid(), 1},
+        b{slab.get(), Rigid(), 2} {
+    slab_at.world_center = Vec3(0, -0.5, 0);
+  }
+  bool ok() const { return bar && slab; }
+  /// The bar at `bar_at` against the slab, target direction only.
+  void query(PairTracker& tracker, const Placement& bar_at, const PairSettings& settings,
+             DirectedResult out[2]) const {
+    tracker.update({&a, 1, bar_at}, {&b, 1, slab_at}, {true, false}, settings, out);
+  }
+
+  ModelPtr bar, slab;
+  Part a, b;
+  Placement slab_at;  ///< the slab's placement
+};
+
 /// Regular tetrahedron centred at the origin with the given circumradius.
 MeshData regularTetrahedronMesh(double circumradius);
 /// Random well-shaped tetrahedron of about `size` around the origin, outward CCW.

@@ -18,6 +18,14 @@ struct SC_API Placement {
   Vec3 origin() const { return world_center - rotation() * local_center; }
   /// world_from_local as a rigid transform.
   Rigid worldFromLocal() const { return {rotation(), origin()}; }
+  /// The placement about `local_center` whose world_from_local is `w` (normalised).
+  static Placement fromRigid(const Rigid& w, const Vec3& local_center) {
+    Placement p;
+    p.local_center = local_center;
+    p.orientation = Quat(w.rotation).normalized();
+    p.world_center = w * p.local_center;
+    return p;
+  }
   /// M of (7-1), column-major 4x4 as in OpenGL (m12, m13, m14 = translation).
   Eigen::Matrix4d matrix() const;
 

@@ -54,6 +54,22 @@ struct Aabb {
   }
 };
 
+/// The tight world box of the local box `box` moved by `world_from_local`.
+inline Aabb transformBox(const Aabb& box, const Rigid& world_from_local) {
+  if (box.empty()) return box;
+  const Vec3 c = world_from_local * Vec3(0.5 * (box.min + box.max));
+  const Vec3 e = world_from_local.rotation.cwiseAbs() * Vec3(0.5 * (box.max - box.min));
+  Aabb out;
+  out.min = c - e;
+  out.max = c + e;
+  return out;
+}
+
+/// Euclidean distance between boxes (0 when they overlap); symmetric bit for bit.
+inline double boxDistance(const Aabb& a, const Aabb& b) {
+  return (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero()).norm();
+}
+
 /// What went wrong, or Ok. Values map one to one onto the SC_* codes of sc.h.
 enum class ErrorCode : std::uint8_t {
   Ok,

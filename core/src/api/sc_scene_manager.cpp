@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 // SCSceneManager: the manual's scene API over sc::Scene. Holds no logic of its
 // own beyond argument checks and the translation of enums and result layouts.
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <exception>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 
@@ -15,43 +18,46 @@ namespace {
 
 using sc::detail::toScCode;
 
-bool toActivity(SCenum v, sc::Activity& out) {
-  switch (v) {
-    case SC_ACTIVITY_ACTIVE: out = sc::Activity::Active; return true;
-    case SC_ACTIVITY_SLEEPING: out = sc::Activity::Sleeping; return true;
-    case SC_ACTIVITY_PASSIVE: out = sc::Activity::Passive; return true;
-    case SC_ACTIVITY_INACTIVE: out = sc::Activity::Inactive; return true;
-    default: return false;
-  }
-}
+/// One sc.h enum value and the modern API's value it stands for.
+template <class E>
+struct EnumRow {
+  SCenum sc_value;
+  E value;
+};
 
-bool toPairActivity(SCenum v, sc::PairActivity& out) {
-  switch (v) {
-    case SC_ACTIVITY_ACTIVE: out = sc::PairActivity::Active; return true;
-    case SC_ACTIVITY_INACTIVE: out = sc::PairActivity::Inactive; return true;
-    case SC_ACTIVITY_ONE_WAY_ACTIVE: out = sc::PairActivity::OneWayActive; return true;
-    case SC_ACTIVITY_ONE_WAY_INACTIVE: out = sc::PairActivity::OneWayInactive; return true;
-    default: return false;
-  }
-}
+constexpr EnumRow<sc::Activity> kActivities[] = {
+    {SC_ACTIVITY_ACTIVE, sc::Activity::Active},
+    {SC_ACTIVITY_SLEEPING, sc::Activity::Sleeping},
+    {SC_ACTIVITY_PASSIVE, sc::Activity::Passive},
+    {SC_ACTIVITY_INACTIVE, sc::Activity::Inactive},
+};
+constexpr EnumRow<sc::PairActivity> kPairActivities[] = {
+    {SC_ACTIVITY_ACTIVE, sc::PairActivity::Active},
+    {SC_ACTIVITY_INACTIVE, sc::PairActivity::Inactive},
+    {SC_ACTIVITY_ONE_WAY_ACTIVE, sc::PairActivity::OneWayActive},
+    {SC_ACTIVITY_ONE_WAY_INACTIVE, sc::PairActivity::OneWayInactive},
+};
+constexpr EnumRow<sc::RotationMode> kRotationModes[] = {
+    {SC_ROTATION_MODE_NONE, sc::RotationMode::None},
+    {SC_ROTATION_MODE_INPUT, sc::RotationMode::Input},
+    {SC_ROTATION_MODE_FREE, sc::RotationMode::Free},
+    {SC_ROTATION_MODE_MIX, sc::RotationMode::Mix},
+};
 
-bool toRotationMode(SCenum v, sc::RotationMode& out) {
-  switch (v) {
-    case SC_ROTATION_MODE_NONE: out = sc::RotationMode::None; return true;
-    case SC_ROTATION_MODE_INPUT: out = sc::RotationMode::Input; return true;
-    case SC_ROTATION_MODE_FREE: out = sc::RotationMode::Free; return true;
-    case SC_ROTATION_MODE_MIX: out = sc::RotationMode::Mix; return true;
-    default: return false;
+/// The value of sc.h's `v` in `rows`; false (and `out` unchanged) when it has none.
+template <class E, size_t N>
+bool fromSc(const EnumRow<E> (&rows)[N], SCenum v, E& out) {
+  for (const EnumRow<E>& row : rows) {
+    if (row.sc_value != v) continue;
+    out = row.value;
+    return true;
   }
+  return false;
 }
 
 SCenum fromRotationMode(sc::RotationMode m) {
-  switch (m) {
-    case sc::RotationMode::None: return SC_ROTATION_MODE_NONE;
-    case sc::RotationMode::Input: return SC_ROTATION_MODE_INPUT;
-    case sc::RotationMode::Free: return SC_ROTATION_MODE_FREE;
-    case sc::RotationMode::Mix: return SC_ROTATION_MODE_MIX;
-  }
+  for (const EnumRow<sc::RotationMode>& row : kRotationModes)
+    if (row.value == m) return row.sc_value;
   return SC_ROTATION_MODE_INPUT;
 }
 
@@ -132,6 +138,10 @@ SCint directionStatus(sc::DirectionStatus s) {
   return SC_DIRECTION_NOT_COMPUTED;
 }
 
+bool isOneOf(SCenum type, std::initializer_list<SCenum> types) {
+  return std::find(types.begin(), types.end(), type) != types.end();
+}
+
 /// GetStatus for the integer-valued types.
 SCint intStatus(const sc::PairStatus& pair, int d, SCenum type, SCint* out) {
   const sc::DirectedResult& r = pair.results[d];
@@ -149,14 +159,10 @@ SCint intStatus(const sc::PairStatus& pair, int d, SCenum type, SCint* out) {
     case SC_DIRECTION_STATUS:
       out[0] = directionStatus(r.status);
       return SC_NO_ERROR;
-    case SC_OBJECT_ID:
-    case SC_PIECE_ID:
-    case SC_FEATURE_TYPE:
-    case SC_FEATURE_ON_TARGET:
-    case SC_FEATURE_ON_OPPONENT:
-      break;
     default:
-      return SC_ERROR_INVALID_ARGUMENT;
+      if (!isOneOf(type, {SC_OBJECT_ID, SC_PIECE_ID, SC_FEATURE_TYPE, SC_FEATURE_ON_TARGET,
+                          SC_FEATURE_ON_OPPONENT}))
+        return SC_ERROR_INVALID_ARGUMENT;
   }
   if (r.code != sc::ErrorCode::Ok) return toScCode(r.code);
   switch (type) {
@@ -209,19 +215,9 @@ template <class Real>
 SCint realStatus(const sc::PairStatus& pair, int d, SCenum type, Real* out) {
   const sc::DirectedResult& r = pair.results[d];
   if (type == SC_CONTACT_POINTS) return contactPointsStatus(pair.contacts[d], out);
-  switch (type) {
-    case SC_DISTANCE:
-    case SC_CONTACT_NORMAL:
-    case SC_POINT_ON_TARGET:
-    case SC_POINT_ON_OPPONENT:
-    case SC_TPD_VECTOR:
-    case SC_RPD_VECTOR:
-    case SC_CONTACT_POSITION:
-    case SC_CONTACT_ORIENTATION:
-      break;
-    default:
-      return SC_ERROR_INVALID_ARGUMENT;
-  }
+  if (!isOneOf(type, {SC_DISTANCE, SC_CONTACT_NORMAL, SC_POINT_ON_TARGET, SC_POINT_ON_OPPONENT,
+                      SC_TPD_VECTOR, SC_RPD_VECTOR, SC_CONTACT_POSITION, SC_CONTACT_ORIENTATION}))
+    return SC_ERROR_INVALID_ARGUMENT;
   if (r.code != sc::ErrorCode::Ok) return toScCode(r.code);
   double v[4];
   int n = 0;
@@ -336,19 +332,19 @@ SCint SCSceneManager::GetTransformation(SCint gid, SCenum type, SCfloat* trans) 
 
 SCint SCSceneManager::SetActivityObject(SCint id, SCenum activity) {
   sc::Activity a;
-  if (!toActivity(activity, a)) return SC_ERROR_INVALID_ARGUMENT;
+  if (!fromSc(kActivities, activity, a)) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.setObjectActivity(id, a));
 }
 
 SCint SCSceneManager::SetActivityGroup(SCint gid, SCenum activity) {
   sc::Activity a;
-  if (!toActivity(activity, a)) return SC_ERROR_INVALID_ARGUMENT;
+  if (!fromSc(kActivities, activity, a)) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.setGroupActivity(gid, a));
 }
 
 SCint SCSceneManager::SetActivityPair(SCint gid1, SCint gid2, SCenum activity) {
   sc::PairActivity a;
-  if (!toPairActivity(activity, a)) return SC_ERROR_INVALID_ARGUMENT;
+  if (!fromSc(kPairActivities, activity, a)) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.setPairActivity(gid1, gid2, a));
 }
 
@@ -376,7 +372,7 @@ SCint SCSceneManager::SetAttributeInteger(SCenum attribute, SCint value) {
 SCint SCSceneManager::SetAttributeEnum(SCenum attribute, SCenum value) {
   if (attribute != SC_SCENE_MANAGER_ROTATION_MODE) return SC_ERROR_INVALID_ARGUMENT;
   sc::SceneSettings s = impl_->scene.settings();
-  if (!toRotationMode(value, s.rotation_mode)) return SC_ERROR_INVALID_ARGUMENT;
+  if (!fromSc(kRotationModes, value, s.rotation_mode)) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.setSettings(s));
 }
 

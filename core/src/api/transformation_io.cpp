@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "geometry/math_util.h"
 
@@ -41,25 +42,32 @@ bool lastRowIsAffine(const Eigen::Matrix4d& m) {
          std::abs(m(3, 2)) <= kLastRowTolerance && std::abs(m(3, 3) - 1.0) <= kLastRowTolerance;
 }
 
+/// Rows 1-5 of Table 7-1: a position of three values and the Placement setter it calls.
+struct PositionRow {
+  SCenum type;
+  void (Placement::*set)(const Vec3&);
+};
+constexpr PositionRow kPositionRows[] = {
+    {SC_POSITION_ORIGIN, &Placement::setOrigin},
+    {SC_POSITION_WORLD_CENTER, &Placement::setWorldCenter},
+    {SC_POSITION_LOCAL_CENTER, &Placement::setLocalCenter},
+    {SC_POSITION_NEW_WORLD_CENTER, &Placement::setNewWorldCenter},
+    {SC_POSITION_NEW_LOCAL_CENTER, &Placement::setNewLocalCenter},
+};
+
+const PositionRow* positionRow(SCenum type) {
+  for (const PositionRow& row : kPositionRows)
+    if (row.type == type) return &row;
+  return nullptr;
+}
+
 /// One row of Table 7-1 on finite, bounded values; false for an invalid argument.
 bool apply(Placement& p, SCenum type, const double* v) {
-  const Vec3 vec(v[0], v[1], v[2]);
+  if (const PositionRow* row = positionRow(type)) {
+    (p.*row->set)(Vec3(v[0], v[1], v[2]));
+    return true;
+  }
   switch (type) {
-    case SC_POSITION_ORIGIN:
-      p.setOrigin(vec);
-      return true;
-    case SC_POSITION_WORLD_CENTER:
-      p.setWorldCenter(vec);
-      return true;
-    case SC_POSITION_LOCAL_CENTER:
-      p.setLocalCenter(vec);
-      return true;
-    case SC_POSITION_NEW_WORLD_CENTER:
-      p.setNewWorldCenter(vec);
-      return true;
-    case SC_POSITION_NEW_LOCAL_CENTER:
-      p.setNewLocalCenter(vec);
-      return true;
     case SC_ORIENTATION_QUATERNION: {
       const Quat q(v[0], v[1], v[2], v[3]);  // {s, vx, vy, vz}: Eigen takes w first too
       if (q.coeffs().cwiseAbs().maxCoeff() == 0.0) return false;
@@ -96,22 +104,13 @@ int store(const Matrix& m, double* out) {
 }  // namespace
 
 int transformationArraySize(SCenum type) {
-  switch (type) {
-    case SC_POSITION_ORIGIN:
-    case SC_POSITION_WORLD_CENTER:
-    case SC_POSITION_LOCAL_CENTER:
-    case SC_POSITION_NEW_WORLD_CENTER:
-    case SC_POSITION_NEW_LOCAL_CENTER:
-      return 3;
-    case SC_ORIENTATION_QUATERNION:
-      return 4;
-    case SC_ORIENTATION_MATRIX:
-      return 9;
-    case SC_TRANSFORMATION_MATRIX:
-      return 16;
-    default:
-      return 0;
-  }
+  if (positionRow(type) != nullptr) return 3;
+  // The rotations: a quaternion, a 3x3 matrix, a 4x4 matrix.
+  const std::pair<SCenum, int> kRotationSizes[] = {
+      {SC_ORIENTATION_QUATERNION, 4}, {SC_ORIENTATION_MATRIX, 9}, {SC_TRANSFORMATION_MATRIX, 16}};
+  for (const auto& [rotation, size] : kRotationSizes)
+    if (rotation == type) return size;
+  return 0;
 }
 
 template <class Real>

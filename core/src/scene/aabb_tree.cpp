@@ -131,7 +131,7 @@ const std::vector<HandlePair>& DynamicAabbTree::pairs(double margin) {
   }
   // Pairs of untouched leaves still hold; those of touched leaves are found anew.
   pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
-                              [this](const HandlePair& p) { return dirty_[p.a] || dirty_[p.b]; }),
+                              [this](const HandlePair& p) { return dirty_[p.lo] || dirty_[p.hi]; }),
                pairs_.end());
   fresh_.clear();
   for (int leaf : dirty_list_) {

@@ -7,17 +7,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "scene/ordered_pair.h"
 #include "smartcollision/types.h"
 
 namespace sc::detail {
 
-/// Two leaf handles, a < b.
-struct HandlePair {
-  int a = 0;
-  int b = 0;
-  bool operator<(const HandlePair& o) const { return a < o.a || (a == o.a && b < o.b); }
-  bool operator==(const HandlePair& o) const { return a == o.a && b == o.b; }
-};
+/// Two leaf handles, lo < hi.
+using HandlePair = OrderedPair;
 
 /// Binary tree whose leaves hold a tight box, a fat box containing it, and a user
 /// integer. A leaf is re-inserted only when its tight box leaves its fat box, so

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "scene/ordered_pair.h"
 #include "smartcollision/pair_tracker.h"
 #include "smartcollision/scene.h"
 
@@ -12,12 +13,7 @@ namespace sc::detail {
 
 /// An unordered group pair in listing order: lo < hi, so the static group (the
 /// smallest id) is always lo.
-struct PairKey {
-  int lo = 0;
-  int hi = 0;
-  bool operator<(const PairKey& o) const { return lo < o.lo || (lo == o.lo && hi < o.hi); }
-  bool operator==(const PairKey& o) const { return lo == o.lo && hi == o.hi; }
-};
+using PairKey = OrderedPair;
 
 inline PairKey pairKeyOf(int a, int b) { return a < b ? PairKey{a, b} : PairKey{b, a}; }
 

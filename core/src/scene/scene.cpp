@@ -48,23 +48,6 @@ struct GroupRec {
   int leaf = detail::DynamicAabbTree::kNull;  ///< moving groups with parts only
 };
 
-/// World AABB of a local AABB under a rigid transform.
-Aabb transformBox(const Aabb& box, const Rigid& world_from_local) {
-  if (box.empty()) return box;
-  const Vec3 c = world_from_local * Vec3(0.5 * (box.min + box.max));
-  const Vec3 e = world_from_local.rotation.cwiseAbs() * Vec3(0.5 * (box.max - box.min));
-  Aabb out;
-  out.min = c - e;
-  out.max = c + e;
-  return out;
-}
-
-/// Euclidean distance between boxes; symmetric bit for bit.
-double boxDistance(const Aabb& a, const Aabb& b) {
-  const Vec3 gap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero());
-  return gap.norm();
-}
-
 bool takesPart(const ObjectRec& o) { return o.active && !o.model->pieces().empty(); }
 
 Status invalidId(const char* what) { return Status(ErrorCode::InvalidId, what); }
@@ -224,12 +207,7 @@ struct Scene::Impl {
 
   Placement placementOf(const ObjectRec& o) const {
     if (o.group == kStaticGroup) return o.own;
-    const Rigid w = worldFromModel(o);
-    Placement p;
-    p.local_center = o.own.local_center;
-    p.orientation = Quat(w.rotation).normalized();
-    p.world_center = w * p.local_center;
-    return p;
+    return Placement::fromRigid(worldFromModel(o), o.own.local_center);
   }
 
   bool computes(const GroupRec& target, const GroupRec& opponent) const {
@@ -315,10 +293,10 @@ struct Scene::Impl {
   void treeCandidates() {
     const double max_distance = settings.max_distance;
     for (const detail::HandlePair& p : tree.pairs(max_distance)) {
-      const GroupRec& a = *slots[tree.user(p.a)];
-      const GroupRec& b = *slots[tree.user(p.b)];
+      const GroupRec& a = *slots[tree.user(p.lo)];
+      const GroupRec& b = *slots[tree.user(p.hi)];
       if (!a.seeker && !b.seeker) continue;
-      if (boxDistance(tree.box(p.a), tree.box(p.b)) > max_distance) continue;
+      if (boxDistance(tree.box(p.lo), tree.box(p.hi)) > max_distance) continue;
       candidates.push_back(candidateOf(a, b));
     }
   }

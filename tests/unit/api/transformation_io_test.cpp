@@ -12,10 +12,14 @@
 #include <type_traits>
 #include <vector>
 
+#include "support/placements.h"
 #include "support/test_support.h"
 
 namespace sc::detail {
 namespace {
+
+using test::quatDistance;
+using test::startState;
 
 const double kHalfSqrt2 = std::sqrt(0.5);
 
@@ -28,26 +32,12 @@ const SCenum kReadableTypes[] = {SC_POSITION_ORIGIN,        SC_POSITION_WORLD_CE
                                  SC_ORIENTATION_MATRIX,     SC_TRANSFORMATION_MATRIX};
 const SCenum kUnknownTypes[] = {0, -1, 0x0400, 0x0409, SC_ACTIVITY_ACTIVE, SC_DISTANCE};
 
-/// Same start as placement_test: r_WC = (1,2,3), r_LC = (4,5,6), 90 degrees about z,
-/// so R(x,y,z) = (-y,x,z) and r_O = (6,-2,-3).
-Placement startState() {
-  Placement p;
-  p.world_center = Vec3(1, 2, 3);
-  p.local_center = Vec3(4, 5, 6);
-  p.orientation = Quat(kHalfSqrt2, 0, 0, kHalfSqrt2);
-  return p;
-}
-
 /// Bit-for-bit equality of everything a Placement stores.
 bool bitwiseEqual(const Placement& a, const Placement& b) {
   return std::memcmp(a.world_center.data(), b.world_center.data(), 3 * sizeof(double)) == 0 &&
          std::memcmp(a.local_center.data(), b.local_center.data(), 3 * sizeof(double)) == 0 &&
          std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(),
                      4 * sizeof(double)) == 0;
-}
-
-double quatDistance(const Quat& a, const Quat& b) {
-  return std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());
 }
 
 /// A valid input array of each type, in double.
@@ -65,31 +55,19 @@ std::vector<double> validValues(SCenum type) {
 }
 
 template <class Real>
-struct Precision;
-template <>
-struct Precision<double> {
-  static constexpr double kRelTol = 1e-12;
-};
-template <>
-struct Precision<float> {
-  static constexpr double kRelTol = 1e-6;  // ~8 float ulps
-};
-
-template <class Real>
 class TransformationIo : public ::testing::Test {
  protected:
-  static double tol(double magnitude) { return Precision<Real>::kRelTol * (1.0 + std::abs(magnitude)); }
+  static double tol(double magnitude) { return test::realTol<Real>(magnitude); }
 
   static SCint set(Placement& p, SCenum type, const std::vector<double>& values) {
-    std::vector<Real> in(values.begin(), values.end());
-    return setTransformation(p, type, in.data());
+    return setTransformation(p, type, test::convert<Real>(values).data());
   }
 
   /// Table 7-2 read; fails the test unless the call succeeds.
   static std::vector<double> get(const Placement& p, SCenum type) {
     std::vector<Real> out(transformationArraySize(type), Real(-12345));
     EXPECT_EQ(getTransformation(p, type, out.data()), SC_NO_ERROR) << "type " << type;
-    return std::vector<double>(out.begin(), out.end());
+    return test::convert<double>(out);
   }
 
   static void expectValues(const std::vector<double>& got, const std::vector<double>& expected) {
@@ -113,14 +91,7 @@ class TransformationIo : public ::testing::Test {
   }
 };
 
-struct RealNames {
-  template <class T>
-  static std::string GetName(int) {
-    return std::is_same_v<T, float> ? "Float" : "Double";
-  }
-};
-using Reals = ::testing::Types<float, double>;
-TYPED_TEST_SUITE(TransformationIo, Reals, RealNames);
+TYPED_TEST_SUITE(TransformationIo, sc::test::Reals, sc::test::RealNames);
 
 // ---- Table 7-1 through arrays ----------------------------------------------------
 
@@ -296,9 +267,7 @@ TYPED_TEST(TransformationIo, UnknownTypeIsInvalid) {
 }
 
 TYPED_TEST(TransformationIo, NonFiniteValueAnywhereIsInvalid) {
-  const TypeParam bad[] = {std::numeric_limits<TypeParam>::quiet_NaN(),
-                           std::numeric_limits<TypeParam>::infinity(),
-                           -std::numeric_limits<TypeParam>::infinity()};
+  const std::vector<TypeParam> bad = test::nonFinite<TypeParam>();
   for (SCenum type : kAllTypes) {
     const std::vector<double> valid = validValues(type);
     ASSERT_EQ(static_cast<int>(valid.size()), transformationArraySize(type));

@@ -191,24 +191,24 @@ TEST(ValidateArrays, NonFiniteUnusedVertexIsStillInvalidArgument) {
   EXPECT_EQ(validateArrays(m).code(), ErrorCode::InvalidArgument);
 }
 
-TEST(ValidateArrays, IndexOutOfRangeIsInvalidArgument) {
+/// The tetrahedron with vertex index `index` at corner `corner` of triangle `t`: an
+/// InvalidArgument that names the triangle.
+void expectBadIndex(int t, int corner, int index) {
   MeshData m = tetrahedron();
-  m.triangles[1][2] = 4;  // == vertex count
+  m.triangles[static_cast<std::size_t>(t)][corner] = index;
   const Status s = validateArrays(m);
-  EXPECT_EQ(s.code(), ErrorCode::InvalidArgument);
-  EXPECT_NE(s.message().find("triangle 1"), std::string::npos) << s.message();
-  m.triangles[1][2] = std::numeric_limits<int>::max();
-  EXPECT_EQ(validateArrays(m).code(), ErrorCode::InvalidArgument);
+  EXPECT_EQ(s.code(), ErrorCode::InvalidArgument) << "index " << index;
+  EXPECT_NE(s.message().find("triangle " + std::to_string(t)), std::string::npos) << s.message();
+}
+
+TEST(ValidateArrays, IndexOutOfRangeIsInvalidArgument) {
+  expectBadIndex(1, 2, 4);  // == vertex count
+  expectBadIndex(1, 2, std::numeric_limits<int>::max());
 }
 
 TEST(ValidateArrays, NegativeIndexIsInvalidArgument) {
-  MeshData m = tetrahedron();
-  m.triangles[3][0] = -1;
-  const Status s = validateArrays(m);
-  EXPECT_EQ(s.code(), ErrorCode::InvalidArgument);
-  EXPECT_NE(s.message().find("triangle 3"), std::string::npos) << s.message();
-  m.triangles[3][0] = std::numeric_limits<int>::min();
-  EXPECT_EQ(validateArrays(m).code(), ErrorCode::InvalidArgument);
+  expectBadIndex(3, 0, -1);
+  expectBadIndex(3, 0, std::numeric_limits<int>::min());
 }
 
 TEST(ValidateArrays, NoTrianglesIsInvalidArgument) {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "support/placements.h"
 #include "support/test_support.h"
 
 namespace sc {
@@ -15,19 +16,17 @@ namespace {
 constexpr double kTol = 1e-12;
 const double kHalfSqrt2 = std::sqrt(0.5);
 
-/// r_WC = (1,2,3), r_LC = (4,5,6), 90 degrees about z: R(x,y,z) = (-y,x,z).
-/// Hence r_O = r_WC - R r_LC = (1,2,3) - (-5,4,6) = (6,-2,-3).
-Placement startState() {
-  Placement p;
-  p.world_center = Vec3(1, 2, 3);
-  p.local_center = Vec3(4, 5, 6);
-  p.orientation = Quat(kHalfSqrt2, 0, 0, kHalfSqrt2);
-  return p;
-}
+using test::quatDistance;
+using test::startState;
 
-/// q and -q are the same rotation.
-double quatDistance(const Quat& a, const Quat& b) {
-  return std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());
+/// Runs `check` on `cases` draws of one generator seeded with `seed`, each case traced.
+template <class Check>
+void forCases(std::uint64_t seed, int cases, Check check) {
+  test::Rng rng(seed);
+  for (int k = 0; k < cases; ++k) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed << ", case " << k);
+    check(rng);
+  }
 }
 
 /// World position of local point r_L by the first form of (7-1).
@@ -224,10 +223,7 @@ TEST(Placement, Table72MatrixIsTwcTimesRTimesTlcInverse) {
 // ---- Invariants ------------------------------------------------------------------
 
 TEST(Placement, NewCentersKeepOriginAndEveryPointOfTheObject) {
-  const std::uint64_t seed = 20240701;
-  test::Rng rng(seed);
-  for (int k = 0; k < 200; ++k) {
-    SCOPED_TRACE(::testing::Message() << "seed " << seed << ", case " << k);
+  forCases(20240701, 200, [](test::Rng& rng) {
     const Placement before = randomPlacement(rng);
     const Vec3 point = randomPoint(rng);
     Placement by_world = before, by_local = before;
@@ -238,14 +234,11 @@ TEST(Placement, NewCentersKeepOriginAndEveryPointOfTheObject) {
       EXPECT_VEC_NEAR(toWorld(*p, point), toWorld(before, point), 1e-11);
       EXPECT_EQ(p->orientation.coeffs(), before.orientation.coeffs());
     }
-  }
+  });
 }
 
 TEST(Placement, SetMatrixRoundTripsThroughMatrix) {
-  const std::uint64_t seed = 77;
-  test::Rng rng(seed);
-  for (int k = 0; k < 200; ++k) {
-    SCOPED_TRACE(::testing::Message() << "seed " << seed << ", case " << k);
+  forCases(77, 200, [](test::Rng& rng) {
     const Placement source = randomPlacement(rng);
     const Eigen::Matrix4d m = source.matrix();
     Placement target = randomPlacement(rng);
@@ -255,7 +248,7 @@ TEST(Placement, SetMatrixRoundTripsThroughMatrix) {
     EXPECT_LE(quatDistance(target.orientation, source.orientation), 1e-12);
     EXPECT_VEC_NEAR(target.local_center, local_center, 0.0);  // r_LC is kept
     EXPECT_NEAR(target.orientation.norm(), 1.0, 1e-15);
-  }
+  });
 }
 
 TEST(Placement, ZeroQuaternionKeepsTheCurrentOrientation) {
@@ -275,27 +268,23 @@ TEST(Placement, TinyAndHugeQuaternionsNormaliseWithoutUnderflowOrOverflow) {
 // ---- rotationToQuaternion --------------------------------------------------------
 
 TEST(RotationToQuaternion, RoundTripsRandomRotationsUpToSign) {
-  const std::uint64_t seed = 5;
-  test::Rng rng(seed);
-  for (int k = 0; k < 500; ++k) {
+  forCases(5, 500, [](test::Rng& rng) {
     const Quat q = test::randomRotation(rng);
     const Result<Quat> back = rotationToQuaternion(q.toRotationMatrix());
-    ASSERT_TRUE(back.ok()) << "seed " << seed << ", case " << k;
-    EXPECT_LE(quatDistance(back.value(), q), 1e-12) << "seed " << seed << ", case " << k;
+    ASSERT_TRUE(back.ok());
+    EXPECT_LE(quatDistance(back.value(), q), 1e-12);
     EXPECT_NEAR(back.value().norm(), 1.0, 1e-15);
-  }
+  });
 }
 
 TEST(RotationToQuaternion, AcceptsRotationsRoundedToFloat) {
-  const std::uint64_t seed = 6;
-  test::Rng rng(seed);
-  for (int k = 0; k < 200; ++k) {
+  forCases(6, 200, [](test::Rng& rng) {
     const Quat q = test::randomRotation(rng);
     const Mat3 rounded = q.toRotationMatrix().cast<float>().cast<double>();
     const Result<Quat> back = rotationToQuaternion(rounded);
-    ASSERT_TRUE(back.ok()) << "seed " << seed << ", case " << k;
-    EXPECT_LE(quatDistance(back.value(), q), 1e-6) << "seed " << seed << ", case " << k;
-  }
+    ASSERT_TRUE(back.ok());
+    EXPECT_LE(quatDistance(back.value(), q), 1e-6);
+  });
 }
 
 TEST(RotationToQuaternion, RejectsReflections) {

@@ -16,30 +16,29 @@ namespace {
 
 constexpr double kTol = 1e-12;
 
+/// `r` has the distance and the closest points on P and on Q given.
+void expectClosest(const SegmentPair& r, double distance, const Vec3& on_p, const Vec3& on_q) {
+  EXPECT_NEAR(std::sqrt(r.distance_squared), distance, kTol);
+  EXPECT_VEC_NEAR(r.point_p, on_p, kTol);
+  EXPECT_VEC_NEAR(r.point_q, on_q, kTol);
+}
+
 TEST(SegmentDistance, CrossingSegmentsMeetAtTheirMiddles) {
   const SegmentPair r =
       closestSegmentSegment(Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 1), Vec3(0, 1, 1));
-  EXPECT_NEAR(std::sqrt(r.distance_squared), 1.0, kTol);
+  expectClosest(r, 1.0, Vec3(0, 0, 0), Vec3(0, 0, 1));
   EXPECT_NEAR(r.s, 0.5, kTol);
   EXPECT_NEAR(r.t, 0.5, kTol);
-  EXPECT_VEC_NEAR(r.point_p, Vec3(0, 0, 0), kTol);
-  EXPECT_VEC_NEAR(r.point_q, Vec3(0, 0, 1), kTol);
 }
 
 TEST(SegmentDistance, ParallelSegmentsPickMidpointOfOverlap) {
-  const SegmentPair r =
-      closestSegmentSegment(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(1, 1, 0), Vec3(3, 1, 0));
-  EXPECT_NEAR(std::sqrt(r.distance_squared), 1.0, kTol);
-  EXPECT_VEC_NEAR(r.point_p, Vec3(1.5, 0, 0), kTol);
-  EXPECT_VEC_NEAR(r.point_q, Vec3(1.5, 1, 0), kTol);
+  expectClosest(closestSegmentSegment(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(1, 1, 0), Vec3(3, 1, 0)),
+                1.0, Vec3(1.5, 0, 0), Vec3(1.5, 1, 0));
 }
 
 TEST(SegmentDistance, AntiparallelSegmentsPickMidpointOfOverlap) {
-  const SegmentPair r =
-      closestSegmentSegment(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 1), Vec3(1, 0, 1));
-  EXPECT_NEAR(std::sqrt(r.distance_squared), 1.0, kTol);
-  EXPECT_VEC_NEAR(r.point_p, Vec3(1.5, 0, 0), kTol);
-  EXPECT_VEC_NEAR(r.point_q, Vec3(1.5, 0, 1), kTol);
+  expectClosest(closestSegmentSegment(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 1), Vec3(1, 0, 1)),
+                1.0, Vec3(1.5, 0, 0), Vec3(1.5, 0, 1));
 }
 
 TEST(SegmentDistance, ParallelDisjointSegmentsUseNearestEnds) {

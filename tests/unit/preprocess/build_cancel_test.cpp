@@ -72,18 +72,23 @@ TEST(BuildCancel, UncancelledBuildWritesTheCacheFile) {
   EXPECT_TRUE(leftovers(file.path).empty());
 }
 
+/// Builds `mesh` with `options` (made by cancelAt) and expects it cancelled: no piece,
+/// InvalidOperation, and neither the cache file nor a temporary of it written.
+void expectCancelled(ModelKind kind, const MeshData& mesh, const BuildOptions& options) {
+  const Result<PiecePtr> built = buildPiece(kind, mesh, options);
+  ASSERT_FALSE(built.hasValue());
+  EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+  EXPECT_FALSE(exists(options.cache_file));
+  EXPECT_TRUE(leftovers(options.cache_file).empty());
+}
+
 TEST(BuildCancel, CancelDuringTheDecompositionStopsThereAndWritesNothing) {
   const TempFile file("sc_cancel_test", "mid.bvh");
   double highest = 0.0;
-  const Result<PiecePtr> built =
-      buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.3, file.path, highest));
-  ASSERT_FALSE(built.hasValue());
-  EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+  expectCancelled(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.3, file.path, highest));
   // The decomposition maps to [0.05, 0.85] of the whole: it stopped before its end.
   EXPECT_GE(highest, 0.3);
   EXPECT_LT(highest, 0.85);
-  EXPECT_FALSE(exists(file.path));
-  EXPECT_TRUE(leftovers(file.path).empty());
 }
 
 TEST(BuildCancel, CancelOnTwoThreadsStopsTheWorkersAndWritesNothing) {
@@ -92,36 +97,23 @@ TEST(BuildCancel, CancelOnTwoThreadsStopsTheWorkersAndWritesNothing) {
   BuildOptions options = cancelAt(0.3, file.path, highest);
   options.threads = 2;
   // Two regions, so both threads have work when the cancel comes.
-  const Result<PiecePtr> built =
-      buildPiece(ModelKind::ClosedPolyhedron, samples::torusMesh(1.0, 0.3, 100, 50), options);
-  ASSERT_FALSE(built.hasValue());
-  EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+  expectCancelled(ModelKind::ClosedPolyhedron, samples::torusMesh(1.0, 0.3, 100, 50), options);
   EXPECT_LT(highest, 0.85);
-  EXPECT_FALSE(exists(file.path));
-  EXPECT_TRUE(leftovers(file.path).empty());
 }
 
 TEST(BuildCancel, CancelDuringTheHierarchyWritesNothing) {
   const TempFile file("sc_cancel_test", "late.bvh");
   double highest = 0.0;
-  const Result<PiecePtr> built =
-      buildPiece(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.9, file.path, highest));
-  ASSERT_FALSE(built.hasValue());
-  EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+  expectCancelled(ModelKind::ClosedPolyhedron, torus(), cancelAt(0.9, file.path, highest));
   EXPECT_GE(highest, 0.9);
-  EXPECT_FALSE(exists(file.path));
-  EXPECT_TRUE(leftovers(file.path).empty());
 }
 
 TEST(BuildCancel, CancelBeforeTheWorkFailsForEveryKind) {
   for (const ModelKind kind : {ModelKind::ClosedPolyhedron, ModelKind::TriangleSoup}) {
     const TempFile file("sc_cancel_test", "early.bvh");
     double highest = 0.0;
-    const Result<PiecePtr> built = buildPiece(kind, torus(), cancelAt(0.0, file.path, highest));
-    ASSERT_FALSE(built.hasValue());
-    EXPECT_EQ(built.status().code(), ErrorCode::InvalidOperation);
+    expectCancelled(kind, torus(), cancelAt(0.0, file.path, highest));
     EXPECT_EQ(highest, 0.0);
-    EXPECT_FALSE(exists(file.path));
   }
 }
 

@@ -19,6 +19,7 @@
 #include <future>
 #include <iterator>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "query/gjk.h"
@@ -41,15 +42,21 @@ constexpr std::size_t kHeaderBytes = 48;
 constexpr std::size_t kVersionOffset = 8;
 constexpr std::size_t kHashOffset = 24;
 
+/// The fields a cache file stores, to compare as one.
+auto storedFields(const ConvexPolytope& p) {
+  return std::tie(p.vertices, p.original, p.faces, p.face_source, p.adjacency_start, p.adjacency,
+                  p.center, p.radius);
+}
+auto storedFields(const HullBvhNode& n) {
+  return std::tie(n.left, n.right, n.polytope, n.center, n.radius);
+}
+/// The statistics a cache file keeps (not timing and origin).
+auto storedFields(const PieceStats& s) {
+  return std::tie(s.patches, s.virtual_faces, s.hull_vertices, s.tree_depth, s.convex, s.flipped);
+}
+
 void expectSamePolytope(const ConvexPolytope& a, const ConvexPolytope& b) {
-  ASSERT_EQ(a.vertices, b.vertices);
-  ASSERT_EQ(a.original, b.original);
-  ASSERT_EQ(a.faces, b.faces);
-  ASSERT_EQ(a.face_source, b.face_source);
-  ASSERT_EQ(a.adjacency_start, b.adjacency_start);
-  ASSERT_EQ(a.adjacency, b.adjacency);
-  ASSERT_EQ(a.center, b.center);
-  ASSERT_EQ(a.radius, b.radius);
+  ASSERT_TRUE(storedFields(a) == storedFields(b));
 }
 
 /// Same leaves, hierarchy, statistics (except timing and origin) as `expected`.
@@ -60,26 +67,14 @@ void expectSamePiece(const PieceData& expected, const PieceData& actual) {
   const HullBvh& a = expected.hierarchy;
   const HullBvh& b = actual.hierarchy;
   ASSERT_EQ(a.nodes.size(), b.nodes.size());
-  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
-    ASSERT_EQ(a.nodes[i].left, b.nodes[i].left);
-    ASSERT_EQ(a.nodes[i].right, b.nodes[i].right);
-    ASSERT_EQ(a.nodes[i].polytope, b.nodes[i].polytope);
-    ASSERT_EQ(a.nodes[i].center, b.nodes[i].center);
-    ASSERT_EQ(a.nodes[i].radius, b.nodes[i].radius);
-  }
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+    ASSERT_TRUE(storedFields(a.nodes[i]) == storedFields(b.nodes[i])) << "node " << i;
   ASSERT_EQ(a.hulls.size(), b.hulls.size());
   for (std::size_t i = 0; i < a.hulls.size(); ++i)
     ASSERT_NO_FATAL_FAILURE(expectSamePolytope(a.hulls[i], b.hulls[i])) << i;
   EXPECT_EQ(a.leaf_node, b.leaf_node);
   EXPECT_EQ(a.depth, b.depth);
-  const PieceStats& s = expected.stats;
-  const PieceStats& t = actual.stats;
-  EXPECT_EQ(s.patches, t.patches);
-  EXPECT_EQ(s.virtual_faces, t.virtual_faces);
-  EXPECT_EQ(s.hull_vertices, t.hull_vertices);
-  EXPECT_EQ(s.tree_depth, t.tree_depth);
-  EXPECT_EQ(s.convex, t.convex);
-  EXPECT_EQ(s.flipped, t.flipped);
+  EXPECT_TRUE(storedFields(expected.stats) == storedFields(actual.stats));
 }
 
 /// A closed prism over a star with `points` tips: non-convex, 12 * points triangles.
@@ -131,6 +126,14 @@ class CacheFile : public ::testing::Test {
     return buildPiece(ModelKind::ClosedPolyhedron, *star_, options);
   }
   static const PieceData& fresh() { return (*fresh_star_)->internals(); }
+  static std::uint64_t starKey() { return pieceInputHash(ModelKind::ClosedPolyhedron, *star_); }
+  /// What a decode of the star's file starts from: its kind and input mesh.
+  static PieceData decodeTarget() {
+    PieceData target;
+    target.kind = ModelKind::ClosedPolyhedron;
+    target.mesh = fresh().mesh;
+    return target;
+  }
 
   /// The damaged file is not trusted: the piece equals a fresh build and the file
   /// is rewritten with the valid bytes.
@@ -222,11 +225,9 @@ TEST_F(CacheFile, RoundTripLoadsTheSamePreprocessing) {
 }
 
 TEST_F(CacheFile, EncodeDecodeRoundTripIsExact) {
-  const std::uint64_t key = pieceInputHash(ModelKind::ClosedPolyhedron, *star_);
+  const std::uint64_t key = starKey();
   const std::vector<std::uint8_t> bytes = encodePieceCache(key, fresh());
-  PieceData loaded;
-  loaded.kind = ModelKind::ClosedPolyhedron;
-  loaded.mesh = fresh().mesh;
+  PieceData loaded = decodeTarget();
   ASSERT_TRUE(decodePieceCache(bytes, key, loaded));
   loaded.stats.flipped = fresh().stats.flipped;
   ASSERT_NO_FATAL_FAILURE(expectSamePiece(fresh(), loaded));
@@ -279,8 +280,7 @@ TEST_F(CacheFile, AnotherMeshsCacheIsRebuiltForThisMesh) {
   const Result<PiecePtr> other = buildPiece(ModelKind::ClosedPolyhedron, *other_, options);
   ASSERT_TRUE(other.ok()) << other.status().message();
   ASSERT_FALSE(readBytes(file.path).empty());
-  const std::vector<std::uint8_t> valid =
-      encodePieceCache(pieceInputHash(ModelKind::ClosedPolyhedron, *star_), fresh());
+  const std::vector<std::uint8_t> valid = encodePieceCache(starKey(), fresh());
   ASSERT_NO_FATAL_FAILURE(expectRebuiltAndRewritten(file.path, valid));
   // The same arrays as a soup are another input too.
   const Result<PiecePtr> soup = buildPiece(ModelKind::TriangleSoup, *star_, options);
@@ -355,11 +355,9 @@ void resign(std::vector<std::uint8_t>& bytes) {
 }
 
 TEST_F(CacheFile, CountsAndIndicesReadAreNeverTrusted) {
-  const std::uint64_t key = pieceInputHash(ModelKind::ClosedPolyhedron, *star_);
+  const std::uint64_t key = starKey();
   const std::vector<std::uint8_t> valid = encodePieceCache(key, fresh());
-  PieceData target;
-  target.kind = ModelKind::ClosedPolyhedron;
-  target.mesh = fresh().mesh;
+  PieceData target = decodeTarget();
   // The patch count (after the convex flag and the virtual face count) made huge.
   std::vector<std::uint8_t> bad = valid;
   const std::uint64_t huge = std::uint64_t{1} << 60;
@@ -379,9 +377,7 @@ TEST_F(CacheFile, CountsAndIndicesReadAreNeverTrusted) {
       fuzzed[at] = static_cast<std::uint8_t>(rng());
     }
     resign(fuzzed);
-    PieceData out;
-    out.kind = ModelKind::ClosedPolyhedron;
-    out.mesh = fresh().mesh;
+    PieceData out = decodeTarget();
     if (!decodePieceCache(fuzzed, key, out)) ++rejected;
   }
   EXPECT_GT(rejected, 0);

@@ -26,6 +26,7 @@ namespace {
 // poses under the sanitizers, where that is a hundred times slower.
 constexpr int kDistancePoses = SC_TEST_SANITIZED ? 10 : 25;
 constexpr int kToiPoses = SC_TEST_SANITIZED ? 8 : 20;
+constexpr double kStopGap = 1e-3;  ///< of the time-of-impact tests
 
 /// A soup of `count` random triangles of about `size` in a box of side `extent`.
 MeshData randomSoup(test::Rng& rng, int count, double size, double extent) {
@@ -79,36 +80,70 @@ struct BruteForce {
     const std::vector<double> g = gaps(o_from_t);
     return *std::min_element(g.begin(), g.end());
   }
+  /// Conservative advancement of pair (i, j) along `delta`, up to `limit`.
+  double advance(int i, int j, const Rigid& o_from_t, const Vec3& delta, double stop_gap,
+                 double limit) const {
+    double s = 0.0;
+    for (int step = 0; step < 64 && s < limit; ++step) {
+      const GjkResult r = pair(i, j, {o_from_t.rotation, o_from_t.translation + s * delta});
+      if (r.status == GjkStatus::Intersecting || r.distance <= stop_gap) return s;
+      // Opening, or (at the start) a gap the whole translation cannot close: no block.
+      const double rate = -r.normal.dot(delta);
+      if (rate <= 0.0 || (step == 0 && r.distance - limit * delta.norm() > 0.5 * stop_gap))
+        return limit;
+      s = std::min(limit, s + (r.distance - 0.5 * stop_gap) / rate);
+    }
+    return s;
+  }
   /// Conservative advancement of every pair not skipped, as documented.
   double toi(const Rigid& o_from_t, const Vec3& delta, double stop_gap,
              const std::vector<LeafPair>& skip) const {
     double limit = 1.0;
     for (int i = 0; i < static_cast<int>(t.size()); ++i) {
       for (int j = 0; j < static_cast<int>(o.size()); ++j) {
-        if (std::binary_search(skip.begin(), skip.end(), LeafPair{i, j})) continue;
-        double s = 0.0;
-        for (int step = 0; step < 64 && s < limit; ++step) {
-          const Rigid at{o_from_t.rotation, o_from_t.translation + s * delta};
-          const GjkResult r = pair(i, j, at);
-          if (r.status == GjkStatus::Intersecting || r.distance <= stop_gap) break;
-          // A gap shrinks at most by the translation: this pair cannot block.
-          if (step == 0 && r.distance - limit * delta.norm() > 0.5 * stop_gap) {
-            s = limit;
-            break;
-          }
-          const double rate = -r.normal.dot(delta);
-          if (rate <= 0.0) {
-            s = limit;
-            break;
-          }
-          s = std::min(limit, s + (r.distance - 0.5 * stop_gap) / rate);
-        }
-        limit = std::min(limit, s);
+        if (!std::binary_search(skip.begin(), skip.end(), LeafPair{i, j}))
+          limit = std::min(limit, advance(i, j, o_from_t, delta, stop_gap, limit));
       }
     }
     return limit;
   }
 };
+
+/// Time-of-impact cases checked, equal to all leaf pairs' advancement, and blocked.
+struct ToiTally {
+  int cases = 0, equal = 0, blocked = 0;
+};
+
+/// One time-of-impact case: pruned pairs are those that cannot block, so ours is
+/// never more conservative than all pairs' advancement (and the same unless a pair's
+/// bounding spheres pass within stop_gap / 2); at the end every pair not skipped
+/// keeps stop_gap / 2.
+void checkToi(GroupPairQuery& q, const BruteForce& brute, const Rigid& pose, const Vec3& delta,
+              double stop_gap, const std::vector<LeafPair>& skip, ToiTally& tally) {
+  const double s = q.translationToi(pose, delta, stop_gap, skip);
+  const double expected = brute.toi(pose, delta, stop_gap, skip);
+  ++tally.cases;
+  EXPECT_GE(s, expected - 1e-9);
+  if (std::abs(s - expected) <= 1e-9) ++tally.equal;
+  if (s < 1.0) ++tally.blocked;
+  const Rigid end{pose.rotation, pose.translation + s * delta};
+  for (int i = 0; i < q.targetLeafCount(); ++i) {
+    for (int j = 0; j < q.opponentLeafCount(); ++j) {
+      if (std::binary_search(skip.begin(), skip.end(), LeafPair{i, j})) continue;
+      ASSERT_GE(brute.gap(i, j, end), 0.5 * stop_gap * (1 - 1e-6)) << i << " " << j;
+    }
+  }
+}
+
+/// All but at most one case equal to all pairs; at least `min_blocked` cases blocked
+/// and some not (both outcomes occur); the counts printed.
+void expectTally(const ToiTally& t, const char* what, int min_blocked) {
+  EXPECT_GE(t.equal, t.cases - 1);
+  EXPECT_GE(t.blocked, min_blocked);
+  EXPECT_LT(t.blocked, t.cases);
+  std::printf("[ group pair query ] %s: %d cases, %d equal to all pairs, %d blocked\n", what,
+              t.cases, t.equal, t.blocked);
+}
 
 class GroupPairQueryTest : public ::testing::Test {
  protected:
@@ -127,6 +162,7 @@ class GroupPairQueryTest : public ::testing::Test {
     o_parts_[0] = Part{closed_.get(), Rigid(), 3};
     target_ = GroupView{t_parts_, 2, Placement()};
     opponent_ = GroupView{o_parts_, 1, Placement()};
+    query_.bind(target_, opponent_);
   }
 
   /// Target placed near the elephant: random rotation, centre within `spread`.
@@ -141,11 +177,11 @@ class GroupPairQueryTest : public ::testing::Test {
   Part t_parts_[2];
   Part o_parts_[1];
   GroupView target_, opponent_;
+  GroupPairQuery query_;  ///< bound to target_ and opponent_
 };
 
 TEST_F(GroupPairQueryTest, LeavesAreNumberedPieceByPiece) {
-  GroupPairQuery q;
-  q.bind(target_, opponent_);
+  GroupPairQuery& q = query_;
   ASSERT_EQ(q.targetLeafCount(), 60 + 40 + 1);
   EXPECT_EQ(q.opponentLeafCount(),
             static_cast<int>(closed_->pieces()[0]->internals().patches.size()));
@@ -161,8 +197,7 @@ TEST_F(GroupPairQueryTest, LeavesAreNumberedPieceByPiece) {
 }
 
 TEST_F(GroupPairQueryTest, DistanceContactsAndIntersectionMatchAllLeafPairs) {
-  GroupPairQuery q;
-  q.bind(target_, opponent_);
+  GroupPairQuery& q = query_;
   const BruteForce brute(q);
   test::Rng rng(42);
   int apart = 0, touching = 0, with_contacts = 0;
@@ -210,12 +245,10 @@ TEST_F(GroupPairQueryTest, DistanceContactsAndIntersectionMatchAllLeafPairs) {
 }
 
 TEST_F(GroupPairQueryTest, TranslationToiMatchesAdvancementOfAllLeafPairs) {
-  GroupPairQuery q;
-  q.bind(target_, opponent_);
+  GroupPairQuery& q = query_;
   const BruteForce brute(q);
   test::Rng rng(7);
-  int cases = 0, equal = 0, blocked = 0;
-  const double stop_gap = 1e-3;
+  ToiTally tally;
   for (int c = 0; c < kToiPoses; ++c) {
     SCOPED_TRACE(c);
     const Rigid pose = randomPose(rng, 1.2);
@@ -232,69 +265,34 @@ TEST_F(GroupPairQueryTest, TranslationToiMatchesAdvancementOfAllLeafPairs) {
     std::vector<LeafPair> skip;
     for (const LeafContact& lc : near) skip.push_back({lc.t_leaf, lc.o_leaf});
     std::sort(skip.begin(), skip.end());
-    const double s = q.translationToi(pose, delta, stop_gap, skip);
-    const double expected = brute.toi(pose, delta, stop_gap, skip);
-    ++cases;
-    // Pruned pairs are those that cannot block: never more conservative than all
-    // pairs, and the same unless a pair's bounding spheres pass within stop_gap / 2.
-    EXPECT_GE(s, expected - 1e-9);
-    if (std::abs(s - expected) <= 1e-9) ++equal;
-    if (s < 1.0) ++blocked;
-    // Safe: at the end every pair not skipped keeps stop_gap / 2.
-    const Rigid end{pose.rotation, pose.translation + s * delta};
-    for (int i = 0; i < q.targetLeafCount(); ++i) {
-      for (int j = 0; j < q.opponentLeafCount(); ++j) {
-        if (std::binary_search(skip.begin(), skip.end(), LeafPair{i, j})) continue;
-        ASSERT_GE(brute.gap(i, j, end), 0.5 * stop_gap * (1 - 1e-6)) << i << " " << j;
-      }
-    }
+    ASSERT_NO_FATAL_FAILURE(checkToi(q, brute, pose, delta, kStopGap, skip, tally));
   }
-  EXPECT_GE(equal, cases - 1);
-  EXPECT_GE(blocked, cases / 4);  // both outcomes occur
-  EXPECT_LT(blocked, cases);
-  std::printf("[ group pair query ] toi: %d cases, %d equal to all pairs, %d blocked\n", cases,
-              equal, blocked);
+  expectTally(tally, "toi", tally.cases / 4);
 }
 
 // Motions along the contact (a sideways jump near the opponent) are pruned by the
 // node hulls' separating planes, which open or close at the rate n.delta: the time
 // of impact stays that of every leaf pair, and the end pose stays safe.
 TEST_F(GroupPairQueryTest, TranslationToiAlongTheContactMatchesAllLeafPairs) {
-  GroupPairQuery q;
-  q.bind(target_, opponent_);
+  GroupPairQuery& q = query_;
   const BruteForce brute(q);
   test::Rng rng(19);
-  int cases = 0, equal = 0, blocked = 0;
-  const double stop_gap = 1e-3;
-  for (int c = 0; cases < kToiPoses && c < 20 * kToiPoses; ++c) {
+  ToiTally tally;
+  for (int c = 0; tally.cases < kToiPoses && c < 20 * kToiPoses; ++c) {
     SCOPED_TRACE(c);
     const Rigid pose = randomPose(rng, 1.2);
     LeafContact closest;
     if (!q.distance(pose, kInfinity, closest) || closest.intersecting) continue;
-    if (closest.gap < 2.0 * stop_gap || closest.gap > 0.1) continue;  // near the opponent
+    if (closest.gap < 2.0 * kStopGap || closest.gap > 0.1) continue;  // near the opponent
     // Orthogonal to the closest pair's normal, with a little of it either way.
     const Vec3 side = closest.normal.unitOrthogonal();
     const Vec3 along = Eigen::AngleAxisd(test::uniform(rng, 0, 2 * M_PI), closest.normal) * side;
     const Vec3 delta =
         test::uniform(rng, 0.05, 0.6) * along + test::uniform(rng, -0.02, 0.02) * closest.normal;
-    const std::vector<LeafPair> skip;
-    const double s = q.translationToi(pose, delta, stop_gap, skip);
-    const double expected = brute.toi(pose, delta, stop_gap, skip);
-    ++cases;
-    EXPECT_GE(s, expected - 1e-9);
-    if (std::abs(s - expected) <= 1e-9) ++equal;
-    if (s < 1.0) ++blocked;
-    const Rigid end{pose.rotation, pose.translation + s * delta};
-    for (int i = 0; i < q.targetLeafCount(); ++i)
-      for (int j = 0; j < q.opponentLeafCount(); ++j)
-        ASSERT_GE(brute.gap(i, j, end), 0.5 * stop_gap * (1 - 1e-6)) << i << " " << j;
+    ASSERT_NO_FATAL_FAILURE(checkToi(q, brute, pose, delta, kStopGap, {}, tally));
   }
-  EXPECT_EQ(cases, kToiPoses);
-  EXPECT_GE(equal, cases - 1);
-  EXPECT_GE(blocked, 1);  // some sideways motions meet the opponent, some do not
-  EXPECT_LT(blocked, cases);
-  std::printf("[ group pair query ] sideways toi: %d cases, %d equal to all pairs, %d blocked\n",
-              cases, equal, blocked);
+  EXPECT_EQ(tally.cases, kToiPoses);
+  expectTally(tally, "sideways toi", 1);  // some sideways motions meet the opponent
 }
 
 TEST_F(GroupPairQueryTest, CoherenceSavesWorkButNotAccuracy) {
@@ -337,8 +335,7 @@ TEST_F(GroupPairQueryTest, CoherenceSavesWorkButNotAccuracy) {
 }
 
 TEST_F(GroupPairQueryTest, MovingAPartWithinItsGroupForgetsTheKnownDistance) {
-  GroupPairQuery q;
-  q.bind(target_, opponent_);
+  GroupPairQuery& q = query_;
   test::Rng rng(5);
   Rigid pose;
   LeafContact best;

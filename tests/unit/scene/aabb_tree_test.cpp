@@ -33,10 +33,6 @@ Aabb randomBox(Rng& rng, double world, double size) {
   return boxAt(c, h);
 }
 
-double boxDistance(const Aabb& a, const Aabb& b) {
-  return (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero()).norm();
-}
-
 Aabb grownBy(const Aabb& b, double margin) {
   Aabb g;
   g.min = b.min.array() - margin;

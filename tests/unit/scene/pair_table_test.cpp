@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 #include "support/shapes.h"
@@ -43,6 +44,15 @@ std::vector<PairKey> keysOf(const PairTable& table) {
   return keys;
 }
 
+/// Per entry, in order: whether direction 0 and direction 1 track a state.
+using Tracking = std::vector<std::pair<bool, bool>>;
+Tracking trackingOf(const PairTable& table) {
+  Tracking t;
+  for (const auto& e : table.entries())
+    t.emplace_back(e.tracker.tracking(0), e.tracker.tracking(1));
+  return t;
+}
+
 auto noneSleeps = [](int) { return false; };
 
 TEST(PairTable, KeysOrderByIdWithTheStaticGroupSecond) {
@@ -71,25 +81,30 @@ TEST(PairTable, SyncKeepsTheTrackersOfListedPairsAndAssignsSlotsInOrder) {
   EXPECT_FALSE(table.entries()[0].tracker.tracking(0));
 }
 
-TEST(PairTable, UnlistedPairsKeepOnlyTheDirectionsOfSleepingTargets) {
-  const TwoBoxes boxes;
+/// A table listing `keys` (none sleeping), every pair tracking both directions.
+struct TrackedTable {
+  TwoBoxes boxes;
   PairTable table;
   std::vector<int> slots;
-  table.sync(std::vector<PairKey>{{kStaticGroup, 4}, {1, 2}, {2, 3}}, noneSleeps, slots);
-  for (auto& e : table.entries()) boxes.track(e.tracker);
+
+  explicit TrackedTable(const std::vector<PairKey>& keys) {
+    table.sync(keys, noneSleeps, slots);
+    for (auto& e : table.entries()) boxes.track(e.tracker);
+  }
+};
+
+TEST(PairTable, UnlistedPairsKeepOnlyTheDirectionsOfSleepingTargets) {
+  TrackedTable t({{kStaticGroup, 4}, {1, 2}, {2, 3}});
+  PairTable& table = t.table;
+  std::vector<int>& slots = t.slots;
 
   // Group 2 and group 4 sleep; nothing is listed.
   auto sleeping = [](int gid) { return gid == 2 || gid == 4; };
   table.sync({}, sleeping, slots);
   EXPECT_TRUE(slots.empty());
   ASSERT_EQ(keysOf(table), (std::vector<PairKey>{{kStaticGroup, 4}, {1, 2}, {2, 3}}));
-  const auto& e = table.entries();
-  EXPECT_TRUE(e[0].tracker.tracking(0));   // 4 -> static: 4 sleeps
-  EXPECT_FALSE(e[0].tracker.tracking(1));  // static -> 4
-  EXPECT_FALSE(e[1].tracker.tracking(0));  // 1 -> 2
-  EXPECT_TRUE(e[1].tracker.tracking(1));   // 2 -> 1
-  EXPECT_TRUE(e[2].tracker.tracking(0));   // 2 -> 3
-  EXPECT_FALSE(e[2].tracker.tracking(1));  // 3 -> 2
+  // The sleeping targets' directions: 4 -> static, 2 -> 1, 2 -> 3.
+  EXPECT_EQ(trackingOf(table), (Tracking{{true, false}, {false, true}, {true, false}}));
 
   // Once awake and still unlisted, the state goes.
   table.sync({}, noneSleeps, slots);
@@ -97,23 +112,16 @@ TEST(PairTable, UnlistedPairsKeepOnlyTheDirectionsOfSleepingTargets) {
 }
 
 TEST(PairTable, ForgetAndDropTouchOnlyTheNamedGroup) {
-  const TwoBoxes boxes;
-  PairTable table;
-  std::vector<int> slots;
-  table.sync(std::vector<PairKey>{{kStaticGroup, 2}, {1, 2}, {3, 4}}, noneSleeps, slots);
-  for (auto& e : table.entries()) boxes.track(e.tracker);
+  TrackedTable t({{kStaticGroup, 2}, {1, 2}, {3, 4}});
+  PairTable& table = t.table;
 
+  // Group 2 as target: 2 -> static and 2 -> 1 forgotten, (3, 4) untouched.
   table.forgetTarget(2);
-  const auto& e = table.entries();
-  EXPECT_FALSE(e[0].tracker.tracking(0));  // 2 -> static
-  EXPECT_TRUE(e[0].tracker.tracking(1));
-  EXPECT_TRUE(e[1].tracker.tracking(0));   // 1 -> 2
-  EXPECT_FALSE(e[1].tracker.tracking(1));  // 2 -> 1
-  EXPECT_TRUE(e[2].tracker.tracking(0) && e[2].tracker.tracking(1));
+  EXPECT_EQ(trackingOf(table), (Tracking{{false, true}, {true, false}, {true, true}}));
 
+  // Group 1 either way: 1 -> 2 too.
   table.forgetGroup(1);
-  EXPECT_FALSE(e[1].tracker.tracking(0));
-  EXPECT_TRUE(e[0].tracker.tracking(1));
+  EXPECT_EQ(trackingOf(table), (Tracking{{false, true}, {false, false}, {true, true}}));
 
   table.dropGroup(2);
   EXPECT_EQ(keysOf(table), (std::vector<PairKey>{{3, 4}}));

@@ -12,7 +12,8 @@
 // --jumps=0.05,0.1,0.3,teleport (default 0.05) the jump lengths to run, where a
 // teleport puts the target at a random other place on the orbit and the carried
 // tracker is reset() first (the documented teleport), so that its result must equal
-// the fresh one's there, depth included.
+// the fresh one's there, depth included. --teleport-distance=X sets
+// PairSettings::teleport_distance (default +inf: every jump is a path).
 #include <time.h>
 
 #include <algorithm>
@@ -39,6 +40,7 @@ using Clock = std::chrono::steady_clock;
 
 int g_steps = 2000;    // --steps=N: a shorter path (profiling)
 unsigned g_seed = 19;  // --seed=N: another path
+double g_teleport_distance = sc::kInfinity;
 double g_jump = 0.05;  // the jump's length (unit-size models); kTeleport: a teleport
 constexpr double kTeleport = -1.0;
 constexpr double kAcceptanceJump = 0.05;  // the case the target is asserted on
@@ -158,10 +160,12 @@ struct Outcome {
 
 bool isJump(std::size_t k) { return k > 0 && k % kJumpEvery == 0; }
 
-/// Apart, at every step; after a teleport, penetrating too (both start there afresh).
+/// Apart, at every step; after a teleport (reset, or a jump beyond the teleport
+/// distance), penetrating too: both start there afresh.
 bool differ(const sc::DirectedResult& w, const sc::DirectedResult& c, bool penetrating,
             std::size_t k) {
-  const bool teleported = g_jump == kTeleport && isJump(k);
+  const bool teleported =
+      isJump(k) && (g_jump == kTeleport || g_teleport_distance <= g_jump);
   if (penetrating && !teleported) return false;
   if (w.code != c.code) return true;
   const double scale = std::max(1e-300, std::abs(c.distance));
@@ -263,6 +267,8 @@ int main(int argc, char** argv) {
     if (std::strncmp(argv[i], "--csv=", 6) == 0) csv = std::fopen(argv[i] + 6, "w");
     if (std::strncmp(argv[i], "--steps=", 8) == 0) g_steps = std::max(2, std::atoi(argv[i] + 8));
     if (std::strncmp(argv[i], "--only=", 7) == 0) only = argv[i] + 7;
+    if (std::strncmp(argv[i], "--teleport-distance=", 20) == 0)
+      g_teleport_distance = std::atof(argv[i] + 20);
     if (std::strncmp(argv[i], "--seed=", 7) == 0)
       g_seed = static_cast<unsigned>(std::strtoul(argv[i] + 7, nullptr, 10));
     if (std::strncmp(argv[i], "--jumps=", 8) == 0) jumps = parseJumps(argv[i] + 8);
@@ -281,6 +287,7 @@ int main(int argc, char** argv) {
       if (!only.empty() && only != (penetrating ? "depth" : "distance")) continue;
       Pair pair{{bunny.model.get(), sc::Rigid(), 0}, {bunny.model.get(), sc::Rigid(), 1}, {}};
       pair.settings.resolve_initial_intersection = true;  // a fresh tracker's depth: global
+      pair.settings.teleport_distance = g_teleport_distance;
       const std::vector<sc::Rigid> path = makePath(pair, bunny.radius, penetrating);
       sc::PairTracker warm_up;  // first calls pay for lazily built state: not a step's cost
       pair.update(warm_up, path[0]);
@@ -290,8 +297,10 @@ int main(int argc, char** argv) {
     }
   }
   if (csv) std::fclose(csv);
-  std::printf("path seed %u, jumps every %d steps; target asserted on the %g case\n", g_seed,
-              kJumpEvery, kAcceptanceJump);
+  std::printf(
+      "path seed %u, jumps every %d steps, teleport distance %g; target asserted on the "
+      "%g case\n",
+      g_seed, kJumpEvery, g_teleport_distance, kAcceptanceJump);
   std::printf("target (every step, thread CPU time): %s\n", ok ? "met" : "MISSED");
   return ok ? 0 : 1;
 }

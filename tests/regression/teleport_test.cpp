@@ -188,6 +188,17 @@ TEST(Teleport, ScApiInactiveThenActiveResetsEveryDirection) {
   ASSERT_EQ(scene.SetActivityGroup(0, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
   ASSERT_EQ(scene.SetActivityGroup(0, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
   ASSERT_NO_FATAL_FAILURE(distances(4.0, 1e-12));
+  // Or the teleport distance: out of range refused, then the jump of 8 back is one.
+  double value = 0.0;
+  ASSERT_EQ(scene.GetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, &value), SC_NO_ERROR);
+  EXPECT_EQ(value, kInfinity);
+  EXPECT_EQ(scene.SetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, 0.0),
+            SC_ERROR_INVALID_ARGUMENT);
+  ASSERT_EQ(scene.SetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, 7.9), SC_NO_ERROR);
+  ASSERT_EQ(scene.GetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, &value), SC_NO_ERROR);
+  EXPECT_EQ(value, 7.9);
+  ASSERT_EQ(scene.SetTransformation(0, SC_POSITION_WORLD_CENTER, start), SC_NO_ERROR);
+  ASSERT_NO_FATAL_FAILURE(distances(2.0, 1e-12));
 }
 
 }  // namespace

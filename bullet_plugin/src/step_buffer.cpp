@@ -36,13 +36,13 @@ void StepBuffer::apply() {
     btTransform x = body->getWorldTransform();
     x.setOrigin(x.getOrigin() + shift);
     body->setWorldTransform(x);
-    projected_.push_back(body);
+    projected_.insert(body);
   }
   projections_.clear();
 }
 
 bool StepBuffer::projected(const btCollisionObject* body) const {
-  return std::find(projected_.begin(), projected_.end(), body) != projected_.end();
+  return projected_.count(body) != 0;
 }
 
 }  // namespace sc::bullet::detail

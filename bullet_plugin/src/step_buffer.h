@@ -8,6 +8,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "smartcollision/bullet/step_stats.h"
@@ -67,7 +68,7 @@ class StepBuffer {
   };
   std::vector<Impulse> impulses_;
   std::unordered_map<btRigidBody*, btVector3> projections_;  ///< reused every detection
-  std::vector<const btCollisionObject*> projected_;
+  std::unordered_set<const btCollisionObject*> projected_;   ///< each body once
   StepStats stats_;
   bool world_attached_ = false;
   bool impact_pass_ = false;

@@ -9,6 +9,12 @@
 
 namespace sc::detail {
 
+namespace {
+/// Kept pairs gathered for more than this many times the reach a call needs are
+/// rebuilt, ahead of need, at that reach.
+constexpr double kOversizedReach = 4.0;
+}  // namespace
+
 double GroupPairQuery::nearCoveredReach(const Rigid& o_from_t) const {
   // The last distance bounds every pair from below: an answer is complete up to that
   // too (an empty one from contactsNear's shortcut, in particular).
@@ -56,14 +62,43 @@ void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshol
   } else {
     evaluateNear(o_from_t, threshold, out);
     // A third of the slack used: the next rebuild starts here, spread over the calls
-    // while the rest lasts.
+    // while the rest lasts. So does one for a set gathered for a far larger reach than
+    // the calls now ask (a long advancement's), whose every pair each call would scan.
+    // A rebuild run ahead for such a reach (one that hit the cap, kMaxContacts, never
+    // finishes) gives way to one at the reach needed.
     const double slack = near_.reach() - threshold;
-    if (!near_.pending().active && displacementBound(near_.pose(), o_from_t) > slack / 3.0)
+    const double oversized = kOversizedReach * (threshold + margin);
+    const NearPairs::Pending& pending = near_.pending();
+    if ((!pending.active || pending.reach > oversized) &&
+        (near_.reach() > oversized || displacementBound(near_.pose(), o_from_t) > slack / 3.0))
       startPendingNear(o_from_t, threshold + margin);
   }
   counters_.ahead_node_pairs = ahead.node_pairs;
   counters_.ahead_gjk = ahead.node_gjk + ahead.leaf_gjk;
   counters_.ahead_installed = ahead.ahead_installed;
+}
+
+bool GroupPairQuery::distanceNear(const Rigid& o_from_t, double max_distance, LeafContact& best,
+                                  bool& found) {
+  // The kept pairs hold every leaf pair within `covered` here, and a leaf's hull is
+  // never farther than its triangles: the nearest kept pair, when within that, is the
+  // distance (a proxy just out of contact), with no traversal.
+  const double covered = near_.coveredReach(o_from_t);
+  if (!(covered > 0.0)) return false;
+  near_.prepareBounds(o_from_t);
+  double bound = found ? std::min(best.gap, max_distance) : max_distance;
+  for (std::size_t i = 0; i < near_.pairs().size(); ++i) {
+    if (near_.gapBound(i) >= std::min(bound, covered)) continue;
+    const LeafContact& kept = near_.pairs()[i];
+    bool beyond = false;
+    const LeafContact c = exactLeafDistance(leafPair(kept.t_leaf, kept.o_leaf), bound, beyond);
+    if (beyond || (found && c.gap >= best.gap)) continue;
+    best = c;
+    found = true;
+    bound = std::min(c.gap, max_distance);
+    if (c.intersecting) break;
+  }
+  return found && best.gap <= covered;
 }
 
 void GroupPairQuery::evaluateNear(const Rigid& o_from_t, double threshold,
@@ -108,9 +143,34 @@ void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
   // there and lent back to it on every call.
   o_from_piece_.swap(pending.o_from_piece);
   placeTargets(o_from_t);
-  ContactsPolicy policy{*this, reach, pending.found};
-  seedTraversal(policy, pending.heap);
+  ContactsPolicy policy{*this, reach, pending.found, &front_};
+  seedPendingNear(policy, o_from_t, pending.heap);
   o_from_piece_.swap(pending.o_from_piece);
+}
+
+void GroupPairQuery::seedPendingNear(ContactsPolicy& policy, const Rigid& o_from_t,
+                                     std::vector<NodePair>& heap) {
+  const double moved = displacementBound(front_.pose(), o_from_t);
+  if (!front_.serves(moved, policy.threshold)) {
+    front_.begin(true);
+    seedTraversal(policy, heap);
+    return;
+  }
+  // Every entry's bound drops by the motion since the front's pose; those that may now
+  // be within reach are taken again (node pairs with a fresh GJK bound), the others
+  // stay in the front as they are.
+  front_.begin(false);
+  heap.clear();
+  for (NodePair p : front_.pairs()) {
+    p.bound = std::max(0.0, p.bound - moved);
+    if (policy.prunes(p.bound)) {
+      front_.record(p);
+      continue;
+    }
+    p.refined = false;
+    heap.push_back(p);
+  }
+  std::make_heap(heap.begin(), heap.end(), Farther());
 }
 
 TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, double threshold,
@@ -131,7 +191,7 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
   const TraversalCounters saved = counters_;
   counters_ = TraversalCounters();
   o_from_piece_.swap(pending.o_from_piece);
-  ContactsPolicy policy{*this, pending.reach, pending.found};
+  ContactsPolicy policy{*this, pending.reach, pending.found, &front_};
   const bool done = runTraversal(policy, pending.heap, budget, until);
   o_from_piece_.swap(pending.o_from_piece);
   const TraversalCounters work = counters_;
@@ -150,6 +210,12 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
   sortContacts(pending.found);
   const Rigid pose = pending.pose;
   const double reach = pending.reach;
+  for (const LeafContact& c : pending.found) {  // the rest of the front
+    NodePair p = leafPair(c.t_leaf, c.o_leaf);
+    p.bound = c.gap;
+    front_.record(p);
+  }
+  front_.finish(pose);
   near_.finishPending();
   installNear(pose, reach);
   return installed;

@@ -130,6 +130,7 @@ void GroupPairQuery::bind(const GroupView& target, const GroupView& opponent) {
   if (!t_same || !o_same || t_moved || o_moved) {
     known_ = false;
     near_.drop();
+    front_.drop();
   }
   if (!t_same || t_moved) {
     updateGroupSphere();
@@ -385,6 +386,7 @@ struct GroupPairQuery::DistancePolicy {
   double splitWithin() const { return -1.0; }  // the order needs tight bounds
   bool full() const { return false; }
   bool admits(const NodePair&) const { return true; }
+  void pruned(const NodePair&) const {}
   void offer(const LeafContact& c) {
     if (found && c.gap >= best.gap) return;
     best = c;
@@ -426,7 +428,9 @@ bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafCo
   } else {
     seed_ = LeafPair();  // the traversal measures it in its turn
   }
-  if (!(policy.found && best.intersecting)) traverse(policy);
+  const bool done = (policy.found && best.intersecting) ||
+                    distanceNear(o_from_t, max_distance, best, policy.found);
+  if (!done) traverse(policy);
   if (policy.found) seed_ = {best.t_leaf, best.o_leaf};
   known_ = true;
   known_pose_ = o_from_t;
@@ -460,6 +464,7 @@ struct GroupPairQuery::IntersectPolicy {
   double splitWithin() const { return -1.0; }
   bool full() const { return false; }
   bool admits(const NodePair&) const { return true; }
+  void pruned(const NodePair&) const {}
   bool visit(const NodePair& p) {
     bool beyond = false;
     hit = q.evaluate(p, q.o_from_piece_[p.t_slot], 0.0, beyond).intersecting;

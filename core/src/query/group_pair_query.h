@@ -14,6 +14,7 @@
 #include "preprocess/piece_data.h"
 #include "query/gjk.h"
 #include "query/leaf_types.h"
+#include "query/near_front.h"
 #include "query/near_pairs.h"
 #include "query/pair_cache.h"
 #include "smartcollision/group.h"
@@ -34,6 +35,8 @@ class GroupPairQuery {
   /// Radius of a sphere holding the target group: the length its relative
   /// thresholds scale with (set by bind(), so no query pays for it).
   double targetSize() const { return near_.target().radius; }
+  /// contactsNear()'s rebuilds so far that started from the last one's front.
+  int frontRebuilds() const { return front_.served(); }
   int opponentLeafCount() const { return o_leaf_count_; }
   Leaf targetLeaf(int t_leaf) const { return leafOf(t_slots_, t_leaf); }
   Leaf opponentLeaf(int o_leaf) const { return leafOf(o_slots_, o_leaf); }
@@ -47,7 +50,8 @@ class GroupPairQuery {
   /// Exact surface distance: a leaf pair whose GJK closest points lie on real faces
   /// is final; otherwise (a virtual feature: the patch's hull may reach out of the
   /// solid by the decomposition's tolerance) it is measured on its real triangles.
-  /// Seeded with the last call's closest pair.
+  /// Seeded with the last call's closest pair; answered from contactsNear()'s kept
+  /// pairs, without a traversal, when they cover the pose up to the distance found.
   bool distance(const Rigid& o_from_t, double max_distance, LeafContact& best);
 
   /// Pairs a contacts query gathers at most: two overlapping 10k-triangle meshes have
@@ -145,6 +149,9 @@ class GroupPairQuery {
   /// contactsNear() without its memo of the last call.
   void contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                             std::vector<LeafContact>& out);
+  /// distance() from the kept near pairs: true when `best` (found: already a
+  /// candidate) is the distance at o_from_t, which they cover.
+  bool distanceNear(const Rigid& o_from_t, double max_distance, LeafContact& best, bool& found);
   /// contactsNear()'s pairs at o_from_t, none farther than `threshold`, into `out`.
   void evaluateNear(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
   /// near_.mutablePairs() (sorted, measured at `pose`) become the pairs within `reach`
@@ -152,6 +159,9 @@ class GroupPairQuery {
   void installNear(const Rigid& pose, double reach);
   /// The next rebuild, started at o_from_t ahead of need and run a little per call.
   void startPendingNear(const Rigid& o_from_t, double reach);
+  /// The pending rebuild's first node pairs into `heap`: from front_ when it serves,
+  /// else from the roots.
+  void seedPendingNear(ContactsPolicy& policy, const Rigid& o_from_t, std::vector<NodePair>& heap);
   /// Runs the pending rebuild for a while and installs it once done. With `finish`
   /// (the kept pairs no longer cover o_from_t) it runs only as far as o_from_t needs
   /// and installs what it found, going on afterwards. Dropped when it no longer
@@ -195,7 +205,8 @@ class GroupPairQuery {
   bool known_ = false;
   Rigid known_pose_;
   double known_gap_ = 0.0;
-  NearPairs near_;  ///< contactsNear()'s warm state; holds the target group's sphere
+  NearPairs near_;   ///< contactsNear()'s warm state; holds the target group's sphere
+  NearFront front_;  ///< where the next rebuild of near_'s pairs starts
   TraversalCounters counters_;
   // Lazily built leaf lists (targetLeaves / opponentLeaves); a cache, not state.
   mutable std::vector<Leaf> t_leaves_, o_leaves_;

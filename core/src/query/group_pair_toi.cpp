@@ -37,6 +37,7 @@ struct GroupPairQuery::ToiPolicy {
   double reach() const { return limit * reach_length + 0.5 * skin; }
   double splitWithin() const { return -1.0; }
   bool full() const { return false; }
+  void pruned(const NodePair&) const {}
   /// May tighten p's bound with the GJK it runs (then marked refined, so the
   /// traversal does not run it again).
   bool admits(NodePair& p) {

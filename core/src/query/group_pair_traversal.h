@@ -20,7 +20,8 @@ struct Farther {
 
 // A policy says which bounds are pruned (`prunes`, monotone in the bound), how far
 // GJK on a node pair needs to look (`reach`), may veto a child pair (`admits`),
-// and takes leaf pairs (`visit`, false to stop).
+// takes leaf pairs (`visit`, false to stop) and is told of each pair pruned by its
+// bound (`pruned`: the front a rebuild of the near pairs leaves, near_front.h).
 template <class Policy>
 void GroupPairQuery::traverse(Policy& policy) {
   seedTraversal(policy, heap_);
@@ -36,7 +37,11 @@ void GroupPairQuery::seedTraversal(Policy& policy, std::vector<NodePair>& heap) 
       root.t_slot = ts;
       root.o_slot = os;
       root.bound = std::max(0.0, sphereBound(root));
-      if (policy.prunes(root.bound) || !policy.admits(root)) continue;
+      if (policy.prunes(root.bound)) {
+        policy.pruned(root);
+        continue;
+      }
+      if (!policy.admits(root)) continue;
       heap.push_back(root);
       std::push_heap(heap.begin(), heap.end(), Farther());
     }
@@ -54,7 +59,11 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
     std::pop_heap(heap.begin(), heap.end(), Farther());
     NodePair p = heap.back();
     heap.pop_back();
-    if (policy.prunes(p.bound)) break;  // every pair left is at least as far
+    if (policy.prunes(p.bound)) {  // every pair left is at least as far
+      policy.pruned(p);
+      for (const NodePair& left : heap) policy.pruned(left);
+      break;
+    }
     ++counters_.node_pairs;
     const HullBvhNode& tn = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
     const HullBvhNode& on = o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node];
@@ -65,7 +74,10 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
     if (!p.refined) {
       p.bound = std::max(p.bound, nodeLowerBound(p, policy.reach(), policy.splitWithin()));
       p.refined = true;
-      if (policy.prunes(p.bound)) continue;
+      if (policy.prunes(p.bound)) {
+        policy.pruned(p);
+        continue;
+      }
       if (!heap.empty() && p.bound > heap.front().bound) {
         heap.push_back(p);
         std::push_heap(heap.begin(), heap.end(), Farther());
@@ -79,7 +91,11 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
       (split_t ? c.t_node : c.o_node) = child;
       c.refined = false;
       c.bound = std::max(p.bound, sphereBound(c));
-      if (policy.prunes(c.bound) || !policy.admits(c)) continue;
+      if (policy.prunes(c.bound)) {
+        policy.pruned(c);
+        continue;
+      }
+      if (!policy.admits(c)) continue;
       heap.push_back(c);
       std::push_heap(heap.begin(), heap.end(), Farther());
     }
@@ -92,6 +108,7 @@ struct GroupPairQuery::ContactsPolicy {
   GroupPairQuery& q;
   double threshold;
   std::vector<LeafContact>& out;
+  NearFront* front = nullptr;  ///< a rebuild of the near pairs records its front here
 
   bool prunes(double bound) const { return bound > threshold; }
   double reach() const { return threshold; }
@@ -102,10 +119,19 @@ struct GroupPairQuery::ContactsPolicy {
   /// every pair nearer than the queue front's lower bound.
   bool full() const { return out.size() >= kMaxContacts; }
   bool admits(const NodePair&) const { return true; }
+  void pruned(const NodePair& p) {
+    if (front) front->record(p);
+  }
   bool visit(const NodePair& p) {
     bool beyond = false;
     const LeafContact c = q.evaluate(p, q.o_from_piece_[p.t_slot], threshold, beyond);
-    if (!beyond && c.gap <= threshold) out.push_back(c);
+    if (!beyond && c.gap <= threshold) {
+      out.push_back(c);
+    } else if (front) {
+      NodePair far = p;
+      far.bound = c.gap;  // a lower bound when beyond
+      front->record(far);
+    }
     return true;
   }
 };

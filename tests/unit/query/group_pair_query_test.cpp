@@ -418,6 +418,114 @@ TEST_F(GroupPairQueryTest, ContactsNearAndItsTimeOfImpactEqualTraversalsAlongASl
       reused, steps, with_contacts, ahead, toi_from_pairs, toi_blocked);
 }
 
+// Long slow slides, each rebuild of the near pairs started from the last one's front
+// (near_front.h) as long as it serves: at every call the pairs are those of a full
+// traversal from the roots, leaf for leaf.
+TEST_F(GroupPairQueryTest, ContactsNearRebuiltFromTheFrontEqualTraversalsFromTheRoots) {
+  GroupPairQuery near, plain;
+  near.bind(target_, opponent_);
+  plain.bind(target_, opponent_);
+  test::Rng rng(53);
+  const double threshold = 0.01, margin = 0.02;
+  const Mat3 turn = Eigen::AngleAxisd(0.003, Vec3(-0.4, 0.2, 1.0).normalized()).toRotationMatrix();
+  int steps = 0, with_contacts = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run) {
+    Rigid pose = randomPose(rng, 0.5);
+    const Vec3 drift = 0.004 * test::randomDirection(rng);
+    for (int k = 0; k < 80; ++k, ++steps) {
+      SCOPED_TRACE(k);
+      pose.translation += drift + 0.002 * test::randomDirection(rng);
+      pose.rotation = turn * pose.rotation;
+      std::vector<LeafContact> got, want;
+      near.contactsNear(pose, threshold, margin, got);
+      plain.contacts(pose, threshold, want);
+      const auto byLeaves = [](const LeafContact& a, const LeafContact& b) {
+        return LeafPair{a.t_leaf, a.o_leaf} < LeafPair{b.t_leaf, b.o_leaf};
+      };
+      std::sort(got.begin(), got.end(), byLeaves);
+      std::sort(want.begin(), want.end(), byLeaves);
+      ASSERT_EQ(got.size(), want.size());
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        ASSERT_EQ(got[i].t_leaf, want[i].t_leaf);
+        ASSERT_EQ(got[i].o_leaf, want[i].o_leaf);
+        EXPECT_NEAR(got[i].gap, want[i].gap, 1e-12);
+      }
+      if (!want.empty()) ++with_contacts;
+    }
+  }
+  EXPECT_GT(with_contacts, steps / 4);
+  EXPECT_GT(near.frontRebuilds(), steps / 10);
+  std::printf("[ group pair query ] %d steps, %d with contacts, %d rebuilds from the front\n",
+              steps, with_contacts, near.frontRebuilds());
+}
+
+// One call with a far larger threshold (a long advancement) gathers a large set;
+// the calls after it, with a small threshold, rebuild it at their own reach instead of
+// scanning it on every call, and answer as full traversals throughout.
+TEST_F(GroupPairQueryTest, ContactsNearGivesUpASetGatheredForAFarLargerReach) {
+  GroupPairQuery near, plain;
+  near.bind(target_, opponent_);
+  plain.bind(target_, opponent_);
+  test::Rng rng(61);
+  const double threshold = 0.002, margin = 0.004, large = 0.1;
+  int replaced = 0, runs = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run, ++runs) {
+    Rigid pose = randomPose(rng, 0.5);
+    std::vector<LeafContact> got, want;
+    near.contactsNear(pose, large, margin, got);
+    const Vec3 drift = 0.0005 * test::randomDirection(rng);
+    for (int k = 0; k < 40; ++k) {
+      SCOPED_TRACE(k);
+      pose.translation += drift;
+      near.contactsNear(pose, threshold, margin, got);
+      plain.contacts(pose, threshold, want);
+      ASSERT_EQ(got.size(), want.size());
+    }
+    // Kept at the large reach, the set would still cover 0.08 here.
+    if (near.nearCoveredReach(pose) <= 4.0 * (threshold + margin)) ++replaced;
+  }
+  EXPECT_EQ(replaced, runs);
+}
+
+// A proxy just out of contact: distance() answers from the pairs contactsNear()
+// keeps when they cover the pose, and equals a fresh query's distance, in contact or
+// not, covered or not.
+TEST_F(GroupPairQueryTest, DistanceFromTheNearPairsEqualsAFreshQuery) {
+  GroupPairQuery near;
+  near.bind(target_, opponent_);
+  test::Rng rng(59);
+  const double threshold = 0.01, margin = 0.02;
+  int steps = 0, from_pairs = 0, apart = 0, apart_from_pairs = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 6); ++run) {
+    Rigid pose = randomPose(rng, 0.5);
+    const Vec3 drift = 0.003 * test::randomDirection(rng);
+    for (int k = 0; k < 40; ++k, ++steps) {
+      SCOPED_TRACE(k);
+      pose.translation += drift;
+      std::vector<LeafContact> contacts;
+      near.contactsNear(pose, threshold, margin, contacts);
+      const Rigid moved{pose.rotation, pose.translation + 0.002 * test::randomDirection(rng)};
+      GroupPairQuery fresh;
+      fresh.bind(target_, opponent_);
+      LeafContact got, want;
+      const bool found = near.distance(moved, kInfinity, got);
+      ASSERT_EQ(found, fresh.distance(moved, kInfinity, want));
+      EXPECT_NEAR(got.gap, want.gap, 1e-12 * (1.0 + want.gap));
+      EXPECT_EQ(got.intersecting, want.intersecting);
+      const bool untraversed = near.counters().node_pairs == 0 && near.counters().leaf_gjk > 0;
+      from_pairs += untraversed;
+      apart += !want.intersecting;
+      apart_from_pairs += untraversed && !want.intersecting;
+    }
+  }
+  EXPECT_GT(from_pairs, steps / 10);
+  EXPECT_GT(apart_from_pairs, 5);
+  std::printf(
+      "[ group pair query ] %d distances, %d from the near pairs; %d apart, %d of them "
+      "from the near pairs\n",
+      steps, from_pairs, apart, apart_from_pairs);
+}
+
 // Warm state after jumps of every size (beyond the kept pairs' reach, up to a
 // teleport): the carried query answers what a fresh one answers at that pose, for
 // the distance, the contacts near and a time of impact, and the kept pairs it no
@@ -473,8 +581,9 @@ TEST_F(GroupPairQueryTest, ContactsNearMeasuresAgainOnlyPairsNearTheThreshold) {
   const double threshold = 0.01, margin = 0.02;
   const Mat3 turn = Eigen::AngleAxisd(0.002, Vec3(0.3, 1.0, -0.2).normalized()).toRotationMatrix();
   int checked = 0, cheap = 0;
-  // Random walks until a few checks saw pairs in contact (at most 20 walks).
-  for (int run = 0; run < 20 && cheap < 4; ++run) {
+  // Random walks until a few checks saw pairs in contact and more than ten checks ran
+  // (at most 40 walks).
+  for (int run = 0; run < 40 && (cheap < 4 || checked <= 10); ++run) {
     Rigid pose = randomPose(rng, 0.6);
     const Vec3 drift = 0.0015 * test::randomDirection(rng);
     for (int k = 0; k < 12; ++k) {

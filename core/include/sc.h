@@ -79,6 +79,7 @@ inline constexpr SCenum SC_SCENE_MANAGER_TORQUE_STIFFNESS = 0x0507;    // double
 inline constexpr SCenum SC_SCENE_MANAGER_THREADS = 0x0508;             // integer; extension (0 = automatic)
 inline constexpr SCenum SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION = 0x0509;  // integer 0/1; extension
 inline constexpr SCenum SC_SCENE_MANAGER_CONTACT_POINTS = 0x050A;  // integer 0/1; extension
+inline constexpr SCenum SC_SCENE_MANAGER_TELEPORT_DISTANCE = 0x050B;  // double; extension
 
 // Rotation modes (manual 8.8).
 inline constexpr SCenum SC_ROTATION_MODE_NONE = 0x0601;

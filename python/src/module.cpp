@@ -127,10 +127,13 @@ void bindSettings(py::module_& m) {
       .def(py::init([](double max_distance, double tolerance, double safety_coefficient,
                        int max_iterations, sc::RotationMode rotation_mode, double force_stiffness,
                        double torque_stiffness, int threads, sc::Broadphase broadphase,
-                       bool resolve_initial_intersection, bool contact_points) {
-             const sc::PairSettings pair{
-                 max_distance,  tolerance,       safety_coefficient, max_iterations,
-                 rotation_mode, force_stiffness, torque_stiffness,   resolve_initial_intersection};
+                       bool resolve_initial_intersection, bool contact_points,
+                       double teleport_distance) {
+             const sc::PairSettings pair{max_distance,       tolerance,
+                                         safety_coefficient, max_iterations,
+                                         rotation_mode,      force_stiffness,
+                                         torque_stiffness,   resolve_initial_intersection,
+                                         teleport_distance};
              return S{pair, threads, broadphase, contact_points};
            }),
            py::kw_only(), py::arg("max_distance") = d.max_distance,
@@ -140,7 +143,8 @@ void bindSettings(py::module_& m) {
            py::arg("torque_stiffness") = d.torque_stiffness, py::arg("threads") = d.threads,
            py::arg("broadphase") = d.broadphase,
            py::arg("resolve_initial_intersection") = d.resolve_initial_intersection,
-           py::arg("contact_points") = d.contact_points)
+           py::arg("contact_points") = d.contact_points,
+           py::arg("teleport_distance") = d.teleport_distance)
       .def_readwrite("max_distance", &S::max_distance,
                      "Pairs farther apart report NO_RESULT (inf: all).")
       .def_readwrite("tolerance", &S::tolerance,
@@ -158,6 +162,9 @@ void bindSettings(py::module_& m) {
                      "Start a pair first seen intersecting from a nearby free pose.")
       .def_readwrite("contact_points", &S::contact_points,
                      "Scenes also list every contact within the tolerance.")
+      .def_readwrite("teleport_distance", &S::teleport_distance,
+                     "A motion moving a target point farther between updates restarts the "
+                     "direction as first seen (inf: every motion is a path).")
       .def(
           "validate", [](const S& s) { check(sc::validate(s)); },
           "Raises InvalidArgumentError naming the first field out of range.")

@@ -5,9 +5,12 @@
 // long as the cube stays there, though it ends 4 units clear. That is the manual's
 // "nothing passes through"; a caller that means a teleport resets the proxies
 // (Scene::teleportGroup, PairTracker::reset, or in sc.h the group set INACTIVE and
-// back), and the pair then reports the distance at the new pose, +4.
+// back), and the pair then reports the distance at the new pose, +4. Or it states
+// once how far a path goes (PairSettings::teleport_distance): a longer motion in one
+// update is a teleport.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 
 #include "sc.h"
@@ -112,6 +115,44 @@ TEST(Teleport, PairTrackerResetForgetsBothDirections) {
   EXPECT_NEAR(out[1].distance, 4.0, 1e-12);
 }
 
+TEST(Teleport, AMotionBeyondTheTeleportDistanceStartsAsAFirstSight) {
+  JumpScene s;
+  SceneSettings settings;
+  settings.teleport_distance = 7.9;  // the jump of 8 is a teleport; 7.9 is still a path
+  ASSERT_TRUE(s.scene.setSettings(settings).ok());
+  ASSERT_TRUE(s.scene.setGroupPlacement(0, at(-5.0)).ok());
+  ASSERT_TRUE(s.scene.update().ok());
+  EXPECT_NEAR(s.distance(0), 4.0, 1e-12);
+  EXPECT_NEAR(s.distance(1), 4.0, 1e-12);
+  // A path again: 7.9 back through the other cube stops at its first contact, x = -1.
+  ASSERT_TRUE(s.scene.setGroupPlacement(0, at(2.9)).ok());
+  ASSERT_TRUE(s.scene.update().ok());
+  EXPECT_NEAR(s.distance(0), -3.9, 1e-3);
+  ASSERT_TRUE(s.scene.setGroupPlacement(0, at(8.5)).ok());  // 5.6 on: still behind it
+  ASSERT_TRUE(s.scene.update().ok());
+  EXPECT_NEAR(s.distance(0), -9.5, 1e-3);
+  // 8 into the other cube: first seen intersecting, as a fresh tracker says.
+  ASSERT_TRUE(s.scene.setGroupPlacement(0, at(0.5)).ok());
+  ASSERT_TRUE(s.scene.update().ok());
+  EXPECT_EQ(s.scene.pairs()[0].results[0].code, ErrorCode::InvalidInitialTransformation);
+  EXPECT_EQ(s.scene.pairs()[0].results[1].code, ErrorCode::InvalidInitialTransformation);
+}
+
+TEST(Teleport, TeleportDistanceOutOfRangeIsRefusedAndChangesNothing) {
+  JumpScene s;
+  for (const double bad : {0.0, -1.0, std::nan("")}) {
+    SceneSettings settings;
+    settings.teleport_distance = bad;
+    EXPECT_EQ(validate(static_cast<const PairSettings&>(settings)).code(),
+              ErrorCode::InvalidArgument);
+    EXPECT_EQ(s.scene.setSettings(settings).code(), ErrorCode::InvalidArgument);
+  }
+  EXPECT_EQ(s.scene.settings().teleport_distance, kInfinity);
+  ASSERT_TRUE(s.scene.setGroupPlacement(0, at(-5.0)).ok());
+  ASSERT_TRUE(s.scene.update().ok());
+  EXPECT_NEAR(s.distance(0), -6.0, 1e-3);
+}
+
 /// sc.h: the same jump through the manual's calls.
 TEST(Teleport, ScApiInactiveThenActiveResetsEveryDirection) {
   const MeshData mesh = boxMesh(Vec3(0.5, 0.5, 0.5));
@@ -147,6 +188,17 @@ TEST(Teleport, ScApiInactiveThenActiveResetsEveryDirection) {
   ASSERT_EQ(scene.SetActivityGroup(0, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
   ASSERT_EQ(scene.SetActivityGroup(0, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
   ASSERT_NO_FATAL_FAILURE(distances(4.0, 1e-12));
+  // Or the teleport distance: out of range refused, then the jump of 8 back is one.
+  double value = 0.0;
+  ASSERT_EQ(scene.GetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, &value), SC_NO_ERROR);
+  EXPECT_EQ(value, kInfinity);
+  EXPECT_EQ(scene.SetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, 0.0),
+            SC_ERROR_INVALID_ARGUMENT);
+  ASSERT_EQ(scene.SetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, 7.9), SC_NO_ERROR);
+  ASSERT_EQ(scene.GetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, &value), SC_NO_ERROR);
+  EXPECT_EQ(value, 7.9);
+  ASSERT_EQ(scene.SetTransformation(0, SC_POSITION_WORLD_CENTER, start), SC_NO_ERROR);
+  ASSERT_NO_FATAL_FAILURE(distances(2.0, 1e-12));
 }
 
 }  // namespace

@@ -85,5 +85,51 @@ TEST(WarmJump, CarriedTrackerEqualsAFreshOneAfterSidewaysJumps) {
   EXPECT_GE(compared, 12);
 }
 
+/// A carried tracker whose jumps exceed PairSettings::teleport_distance answers what a
+/// fresh one answers at every jump: the distance, and inside the opponent the depth
+/// a fresh tracker resolves (resolve_initial_intersection), not the path's.
+TEST(WarmJump, BeyondTheTeleportDistanceEveryJumpEqualsAFreshTracker) {
+  MeshData mesh;
+  ASSERT_NO_FATAL_FAILURE(mesh = loadTestMesh("elephant"));
+  Elephants e;
+  e.model = std::make_shared<const Model>(
+      ModelKind::ClosedPolyhedron,
+      std::vector<PiecePtr>{buildPiece(ModelKind::ClosedPolyhedron, mesh).value()});
+  e.a = {e.model.get(), Rigid(), 0};
+  e.b = {e.model.get(), Rigid(), 1};
+  const double size = (e.model->bounds().max - e.model->bounds().min).norm();
+  Elephants carried = e;
+  carried.settings.teleport_distance = 0.02 * size;
+  carried.settings.resolve_initial_intersection = true;
+  Elephants fresh = carried;
+  fresh.settings.teleport_distance = kInfinity;
+  Rng rng(23);
+  int apart = 0, deep = 0;
+  for (int path = 0; path < 3; ++path) {
+    const Mat3 q = randomRotation(rng).toRotationMatrix();
+    const Vec3 u0 = randomDirection(rng);
+    const Vec3 axis = u0.unitOrthogonal();
+    PairTracker warm;
+    for (int jump = 0; jump < 6; ++jump) {
+      // 5 % of the size along the opponent, apart and then 2 % of it deeper than touching.
+      const Vec3 u = Eigen::AngleAxisd(0.05 * jump, axis) * u0;
+      const double s = e.offsetAtGap(q, u, 0.01 * size);
+      for (const double offset : {s, s - 0.03 * size}) {
+        const Rigid pose{q, offset * u};
+        PairTracker cold;
+        const DirectedResult expected = fresh.update(cold, pose);
+        const DirectedResult r = carried.update(warm, pose);
+        ASSERT_EQ(r.code, expected.code) << "path " << path << " jump " << jump;
+        if (r.code != ErrorCode::Ok) continue;
+        EXPECT_NEAR(r.distance, expected.distance, 1e-12 * size);
+        EXPECT_LE((r.tpdv - expected.tpdv).norm(), 1e-12 * size);
+        ++(expected.distance > 0.0 ? apart : deep);
+      }
+    }
+  }
+  EXPECT_GE(apart, 12);
+  EXPECT_GE(deep, 12);
+}
+
 }  // namespace
 }  // namespace sc::test

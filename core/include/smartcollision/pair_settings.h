@@ -39,6 +39,13 @@ struct PairSettings {
   /// on its intersecting convex leaves (and reports that depth) instead of reporting
   /// InvalidInitialTransformation. Off by default, as in the manual.
   bool resolve_initial_intersection = false;
+  /// A motion of the target relative to the opponent that moves some target point
+  /// farther than this between two updates of a direction is a teleport: the
+  /// direction starts again at the new pose as a fresh tracker would (distance apart;
+  /// intersecting, InvalidInitialTransformation or the resolved depth) instead of
+  /// following a path to it (model units, > 0). +inf, the default: every motion is a
+  /// path, and nothing passes through however far one update goes.
+  double teleport_distance = kInfinity;
 };
 
 /// Ok, or InvalidArgument naming the first field out of range.

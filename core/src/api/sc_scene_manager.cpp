@@ -69,6 +69,7 @@ double* doubleField(sc::SceneSettings& s, SCenum attribute) {
     case SC_SCENE_MANAGER_SAFETY_COEFFICIENT: return &s.safety_coefficient;
     case SC_SCENE_MANAGER_FORCE_STIFFNESS: return &s.force_stiffness;
     case SC_SCENE_MANAGER_TORQUE_STIFFNESS: return &s.torque_stiffness;
+    case SC_SCENE_MANAGER_TELEPORT_DISTANCE: return &s.teleport_distance;
     default: return nullptr;
   }
 }

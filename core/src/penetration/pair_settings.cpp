@@ -20,6 +20,8 @@ Status validate(const PairSettings& s) {
     return bad("force_stiffness must be finite and > 0");
   if (!std::isfinite(s.torque_stiffness) || s.torque_stiffness <= 0.0)
     return bad("torque_stiffness must be finite and > 0");
+  if (std::isnan(s.teleport_distance) || s.teleport_distance <= 0.0)
+    return bad("teleport_distance must be > 0 (+inf allowed)");
   switch (s.rotation_mode) {
     case RotationMode::None:
     case RotationMode::Input:

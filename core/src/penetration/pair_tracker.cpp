@@ -105,6 +105,12 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   ProxyTracker& tracker = state.tracker[dir];
   const Vec3& center = target.placement.local_center;
   const PairSettings settings = effectiveSettings(requested, query, goal * center);
+  // The one rule for a jump: beyond the teleport distance the motion is not a path,
+  // and the direction starts again as first seen (the query's own warm state follows
+  // its rule, near_pairs.h: beyond its reach it no longer answers).
+  if (tracker.tracking() &&
+      query.displacementBound(state.goal[dir], goal) > settings.teleport_distance)
+    tracker.forget();
   Rigid free_pose;
   if (!tracker.tracking() && settings.resolve_initial_intersection &&
       resolveConvexPair(query, target, opponent, goal, settings, state.convex[dir], outcome,

@@ -98,6 +98,11 @@ class GroupPairQuery {
 
   const TraversalCounters& counters() const { return counters_; }
 
+  /// Largest displacement of a target point from pose `from` to pose `to`.
+  double displacementBound(const Rigid& from, const Rigid& to) const {
+    return near_.target().displacement(from, to);
+  }
+
  private:
   /// One piece of a part of a group, with its leaf and node index ranges.
   struct Slot {
@@ -141,10 +146,6 @@ class GroupPairQuery {
   /// GJK on a node pair's hulls, the target piece placed by `o_from_piece`.
   GjkResult nodeGjkAt(const NodePair& p, const Rigid& o_from_piece, const GjkSettings& settings,
                       SimplexCache& cache);
-  /// Largest displacement of a target point from pose `from` to pose `to`.
-  double displacementBound(const Rigid& from, const Rigid& to) const {
-    return near_.target().displacement(from, to);
-  }
   /// contactsNear() without its memo of the last call.
   void contactsNearUncached(const Rigid& o_from_t, double threshold, double margin,
                             std::vector<LeafContact>& out);

@@ -3,7 +3,8 @@
 //  1. a first tetrahedron from the extreme points; every other point goes to the
 //     outside set of the first face it lies above by more than the tolerance;
 //  2. while a face has an outside set: its farthest point is the eye; the faces it
-//     sees (depth-first from that face) are removed and the horizon they leave,
+//     sees or lies in the plane of (within the tolerance; depth-first from that
+//     face) are removed and the horizon they leave, a simple loop,
 //     walked in order, is joined to the eye by new faces; the removed faces'
 //     points go to the new faces they lie above, or are inside and dropped;
 //  3. the checks that let the result stand in for qhull's: no sliver face, every
@@ -124,6 +125,8 @@ bool QuickHull::initialSimplex() {
   faces_.clear();
   w_.stack.clear();
   w_.next_point.assign(p_.size(), -1);
+  w_.point_mark.assign(p_.size(), -1);
+  w_.visit = 0;  // faces and marks are fresh: the stamps start again
   const std::vector<char>& excluded = w_.excluded;
   int first = 0;
   while (first < n && excluded[first]) ++first;
@@ -226,7 +229,9 @@ bool QuickHull::findHorizon(int face, int eye) {
     const int k = (top.first + top.step++) % 3;
     const int g = faces_[f].adj[k];
     if (faces_[g].visit == w_.visit) continue;
-    if (distance(g, eye) > tol_) {
+    // A face the eye lies in the plane of goes too: the faces that replace it lie
+    // in that plane, and a vertex inside a flat region is not left behind.
+    if (distance(g, eye) >= -tol_) {
       faces_[g].visit = w_.visit;
       w_.visible.push_back(g);
       int back = 0;
@@ -252,12 +257,15 @@ bool QuickHull::addEye(int face) {
     }
   }
   if (!findHorizon(face, eye)) return false;
-  // The horizon must be one loop: each edge starts where the one before ends.
   const int edges = static_cast<int>(w_.horizon.size() / 2);
   auto start = [&](int e) { return faces_[w_.horizon[2 * e]].v[w_.horizon[2 * e + 1]]; };
   auto end = [&](int e) { return faces_[w_.horizon[2 * e]].v[(w_.horizon[2 * e + 1] + 1) % 3]; };
+  // The horizon must be one simple loop: each edge starts where the one before
+  // ends, and no vertex comes twice.
+  ++w_.visit;
   for (int e = 0; e < edges; ++e) {
-    if (end(e) != start((e + 1) % edges)) return false;
+    if (end(e) != start((e + 1) % edges) || w_.point_mark[start(e)] == w_.visit) return false;
+    w_.point_mark[start(e)] = w_.visit;
   }
   w_.orphans.clear();
   for (int f : w_.visible) {

@@ -30,6 +30,7 @@ struct QuickHullWorkspace {
   std::vector<Face> faces;
   std::vector<Frame> frames;
   std::vector<int> next_point;
+  std::vector<int> point_mark;  ///< per point: visit it was last seen on the horizon
   std::vector<int> stack;
   std::vector<int> visible;
   std::vector<int> horizon;  ///< pairs (face, edge)

@@ -32,11 +32,17 @@ bool HalfspacePolytope::boxMayReachInterior(const Aabb& box) {
 
 bool HalfspacePolytope::triangleReachesInterior(const Vec3& a, const Vec3& b, const Vec3& c) {
   const int n = static_cast<int>(planes_.size());
-  // A plane with all three corners outside settles it cheaply, before any clipping.
-  for (int i = 0; i < n; ++i) {
+  // A plane with all three corners outside settles it cheaply, before any clipping;
+  // the one that did last time first, as neighbouring triangles share it.
+  auto outside = [&](int i) {
     const Plane& p = planes_[i];
     const double limit = p.offset - depth_;
-    if (p.normal.dot(a) >= limit && p.normal.dot(b) >= limit && p.normal.dot(c) >= limit) {
+    return p.normal.dot(a) >= limit && p.normal.dot(b) >= limit && p.normal.dot(c) >= limit;
+  };
+  if (n > 0 && triangle_hint_ < n && outside(triangle_hint_)) return false;
+  for (int i = 0; i < n; ++i) {
+    if (i != triangle_hint_ && outside(i)) {
+      triangle_hint_ = i;
       return false;
     }
   }

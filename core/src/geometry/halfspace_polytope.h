@@ -35,7 +35,8 @@ class HalfspacePolytope {
 
   std::vector<Plane> planes_;
   double depth_;
-  int hint_ = 0;  ///< plane that separated last time: neighbouring queries share it
+  int hint_ = 0;           ///< plane that separated last time: neighbouring queries share it
+  int triangle_hint_ = 0;  ///< the same for triangles
   std::vector<Vec3> polygon_, clipped_;
 };
 

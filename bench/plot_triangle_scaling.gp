@@ -42,8 +42,8 @@ unset multiplot
 # prep_before (if readable) is an earlier run, drawn thin for comparison.
 if (!exists("prep_csv")) prep_csv = 'docs/benchmarks/triangle_scaling_preprocess.csv'
 if (!exists("prep_png")) prep_png = 'docs/benchmarks/triangle_scaling_preprocess.png'
-if (!exists("prep_before")) prep_before = 'docs/benchmarks/triangle_scaling_preprocess_2026-11-25.csv'
-before_label = "2026-11-25"
+if (!exists("prep_before")) prep_before = 'docs/benchmarks/triangle_scaling_preprocess_round2.csv'
+if (!exists("before_label")) before_label = "before Quickhull"
 set output prep_png
 set xlabel "triangles"
 set xrange [5000:4e6]

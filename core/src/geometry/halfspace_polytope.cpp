@@ -8,10 +8,8 @@ namespace sc::detail {
 HalfspacePolytope::HalfspacePolytope(std::vector<Plane> planes, double depth)
     : planes_(std::move(planes)), depth_(depth) {}
 
-bool HalfspacePolytope::separatedBy(int plane, const Aabb& box) const {
+bool HalfspacePolytope::separatedBy(int plane, const Vec3& centre, const Vec3& half) const {
   const Plane& p = planes_[plane];
-  const Vec3 centre = 0.5 * (box.min + box.max);
-  const Vec3 half = 0.5 * (box.max - box.min);
   const double lowest = p.normal.dot(centre) - p.normal.cwiseAbs().dot(half);
   return lowest >= p.offset - depth_;
 }
@@ -19,9 +17,12 @@ bool HalfspacePolytope::separatedBy(int plane, const Aabb& box) const {
 bool HalfspacePolytope::boxMayReachInterior(const Aabb& box) {
   const int n = static_cast<int>(planes_.size());
   if (n == 0) return true;
-  if (separatedBy(hint_, box)) return false;
+  // Once per box, not per plane: the decomposition's tree walks call this most.
+  const Vec3 centre = 0.5 * (box.min + box.max);
+  const Vec3 half = 0.5 * (box.max - box.min);
+  if (separatedBy(hint_, centre, half)) return false;
   for (int i = 0; i < n; ++i) {
-    if (i != hint_ && separatedBy(i, box)) {
+    if (i != hint_ && separatedBy(i, centre, half)) {
       hint_ = i;
       return false;
     }
@@ -31,11 +32,17 @@ bool HalfspacePolytope::boxMayReachInterior(const Aabb& box) {
 
 bool HalfspacePolytope::triangleReachesInterior(const Vec3& a, const Vec3& b, const Vec3& c) {
   const int n = static_cast<int>(planes_.size());
-  // A plane with all three corners outside settles it cheaply, before any clipping.
-  for (int i = 0; i < n; ++i) {
+  // A plane with all three corners outside settles it cheaply, before any clipping;
+  // the one that did last time first, as neighbouring triangles share it.
+  auto outside = [&](int i) {
     const Plane& p = planes_[i];
     const double limit = p.offset - depth_;
-    if (p.normal.dot(a) >= limit && p.normal.dot(b) >= limit && p.normal.dot(c) >= limit) {
+    return p.normal.dot(a) >= limit && p.normal.dot(b) >= limit && p.normal.dot(c) >= limit;
+  };
+  if (n > 0 && triangle_hint_ < n && outside(triangle_hint_)) return false;
+  for (int i = 0; i < n; ++i) {
+    if (i != triangle_hint_ && outside(i)) {
+      triangle_hint_ = i;
       return false;
     }
   }

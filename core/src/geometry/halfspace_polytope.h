@@ -30,12 +30,13 @@ class HalfspacePolytope {
   const std::vector<Plane>& planes() const { return planes_; }
 
  private:
-  /// Plane index that separated last time: neighbouring queries usually share it.
-  bool separatedBy(int plane, const Aabb& box) const;
+  /// Whether the box (centre, half extents) lies outside `plane` shrunk by depth_.
+  bool separatedBy(int plane, const Vec3& centre, const Vec3& half) const;
 
   std::vector<Plane> planes_;
   double depth_;
-  int hint_ = 0;
+  int hint_ = 0;           ///< plane that separated last time: neighbouring queries share it
+  int triangle_hint_ = 0;  ///< the same for triangles
   std::vector<Vec3> polygon_, clipped_;
 };
 

@@ -5,8 +5,9 @@
 //     balanced (depth ceil(log2 n)) whatever the shape;
 //  2. bottom-up: an inner node's polytope is the hull of its children's vertices.
 //     Up to kPointSetLimit distinct points are kept as a bare point set (the same
-//     hull; GJK scans it), larger sets go through qhull, and a set qhull finds flat
-//     is reduced to its 2-D hull in its plane.
+//     hull; GJK scans it), larger sets go through our Quickhull (quick_hull.h),
+//     qhull where that declines, and a set qhull finds flat is reduced to its 2-D
+//     hull in its plane.
 // Departure from SWIFT++'s bottom-up merging: the top-down median split costs
 // O(n log n) and never degenerates; hulls are not simplified, so they are exact.
 #include "preprocess/hull_bvh.h"
@@ -20,11 +21,12 @@
 #include <utility>
 
 #include "preprocess/convex_hull.h"
+#include "preprocess/quick_hull.h"
 
 namespace sc::detail {
 namespace {
 
-/// Inner nodes with at most this many distinct points skip qhull.
+/// Inner nodes with at most this many distinct points get no hull.
 constexpr int kPointSetLimit = 24;
 
 /// Unit eigenvectors of the covariance of `points[ids]`, largest eigenvalue last.
@@ -161,9 +163,10 @@ class Builder {
   /// (`report`) reports progress.
   void buildNodes(const std::vector<int>& nodes, int first, int stride, bool report) {
     std::vector<Keyed> keyed;
+    QuickHullWorkspace work;
     for (std::size_t k = first; k < nodes.size(); k += stride) {
       const HullBvhNode& node = bvh_.nodes[nodes[k]];
-      bvh_.hulls[node.polytope] = hullOf(node.left, node.right, keyed);
+      bvh_.hulls[node.polytope] = hullOf(node.left, node.right, keyed, work);
       ++inner_done_;
       if (report) reportProgress(false);
     }
@@ -180,7 +183,8 @@ class Builder {
   };
 
   /// Hull of the children's vertices, each input vertex once.
-  ConvexPolytope hullOf(int left, int right, std::vector<Keyed>& keyed) const {
+  ConvexPolytope hullOf(int left, int right, std::vector<Keyed>& keyed,
+                        QuickHullWorkspace& work) const {
     keyed.clear();
     for (const int child : {left, right}) {
       const ConvexPolytope& p = polytopeOf(child);
@@ -202,6 +206,8 @@ class Builder {
       original.push_back(keyed[k].original);
     }
     if (static_cast<int>(points.size()) <= kPointSetLimit) return pointSet(points, original);
+    ConvexPolytope quick;
+    if (quickHull(points, original, work, quick)) return quick;
     Result<ConvexPolytope> hull = convexHull(points, original);
     if (hull.ok()) return std::move(hull.value());
     return flatHull(points, original);

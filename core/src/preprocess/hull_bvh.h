@@ -38,7 +38,7 @@ struct HullBvh {
 };
 
 /// Builds the hierarchy top-down by median splits along the principal axis of the
-/// leaves' centres, then the inner polytopes bottom-up (qhull). `progress` (may be
+/// leaves' centres, then the inner polytopes bottom-up (quickHull, else qhull). `progress` (may be
 /// empty) gets fractions in [0, 1], throttled, on the calling thread. Each depth's
 /// hulls are built on up to `threads` threads; the result is the same for any count.
 HullBvh buildHullBvh(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress,

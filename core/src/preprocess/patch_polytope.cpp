@@ -3,8 +3,9 @@
 //  1. collect the patch's vertices; the patch is flat when they all lie within
 //     kFlatFactor tolerances of the plane of its area-weighted normal;
 //  2. not flat: every patch triangle's plane must support the vertices, checked
-//     by hill climbing on qhull's hull (or, for small patches in HullCheck::Quick,
-//     by scanning the vertices);
+//     by hill climbing on the vertices' hull (our Quickhull, quick_hull.h, or
+//     qhull's where ours declines; for small patches in HullCheck::Quick, by
+//     scanning the vertices);
 //  3. trace the patch's boundary loops over the mesh adjacency, each with the
 //     uncovered part of the hull surface on its left (seen from outside);
 //  4. ear-clip each loop: an ear is a non-degenerate triangle of consecutive loop
@@ -30,6 +31,7 @@
 
 #include "geometry/math_util.h"
 #include "preprocess/convex_hull.h"
+#include "preprocess/quick_hull.h"
 
 namespace sc::detail {
 namespace {
@@ -119,7 +121,7 @@ class Builder {
   Vec3 normal_ = Vec3::UnitZ();          ///< unit area-weighted normal of the patch
   double offset_ = 0.0;                  ///< normal_ . (area-weighted centroid)
   std::vector<Vec2> flat_points_;        ///< flat: positions in the plane's frame
-  ConvexPolytope hull_;                  ///< not flat: qhull's hull (original = local index)
+  ConvexPolytope hull_;                  ///< not flat: the hull (original = local index)
   std::vector<std::vector<int>> loops_;  ///< boundary loops, local vertex indices
   /// Per loop edge i (loop[i] -> loop[i + 1]): the patch triangle and edge index
   /// it reverses.
@@ -198,9 +200,13 @@ double Builder::support(const Vec3& n) const {
 Status Builder::buildHull() {
   use_qhull_ = check_ == HullCheck::Qhull || static_cast<int>(points_.size()) > kScanVertices;
   if (use_qhull_) {
-    Result<ConvexPolytope> hull = convexHull(points_);
-    if (!hull.ok()) return fail("patch: qhull found no volume");
-    hull_ = std::move(hull.value());
+    // One workspace per thread: the growth builds thousands of hulls per region.
+    thread_local QuickHullWorkspace work;
+    if (!quickHull(points_, {}, work, hull_)) {
+      Result<ConvexPolytope> hull = convexHull(points_);
+      if (!hull.ok()) return fail("patch: qhull found no volume");
+      hull_ = std::move(hull.value());
+    }
   }
   if (use_qhull_) facePlanes();
   return Status::success();

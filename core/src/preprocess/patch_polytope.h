@@ -45,7 +45,7 @@ struct PatchPolytope {
   ConvexPolytope polytope;
   int virtual_faces = 0;
   bool flat = false;        ///< within kFlatFactor tolerances of a plane
-  bool used_qhull = false;  ///< supporting planes and coverage checked on qhull's hull
+  bool used_qhull = false;  ///< supporting planes and coverage checked on the full hull
   /// Not flat: the hull's outward face planes (qhull's, or those of `polytope`).
   /// The hull shrunk by the tolerance must meet no triangle outside the patch.
   std::vector<Plane> planes;
@@ -61,7 +61,8 @@ struct PatchPolytope {
 /// How buildPatchPolytope finds the hull's supporting planes and checks that the
 /// faces cover the hull exactly once.
 enum class HullCheck : std::uint8_t {
-  /// qhull's hull (convexHull): support by hill climbing, coverage by area.
+  /// The vertices' hull (quickHull, or convexHull where it declines): support by
+  /// hill climbing, coverage by area.
   Qhull,
   /// Patches of at most kScanVertices vertices skip qhull: support by scanning
   /// the vertices, coverage by the winding number about the vertices' centroid.

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -160,6 +161,16 @@ const char* const kPairs[][2] = {{"bunny00", "bunny00"}, {"armadillo", "bunny00"
 
 std::string pairName(int i) { return std::string(kPairs[i][0]) + "-" + kPairs[i][1]; }
 
+/// The pair kPairs[state.range(0)], or none (the benchmark skipped) without its meshes.
+std::optional<Pair> pairOf(benchmark::State& state) {
+  const int index = static_cast<int>(state.range(0));
+  const Loaded* la = load(kPairs[index][0]);
+  const Loaded* lb = load(kPairs[index][1]);
+  if (la && lb) return Pair(la, lb);
+  state.SkipWithError("meshes not found");
+  return std::nullopt;
+}
+
 bool g_target_missed = false;
 
 #if SC_BENCH_HAVE_FCL
@@ -178,14 +189,10 @@ void reportHapticTarget(const std::string& name, const std::vector<double>& ours
 /// `step_angle` per step, the gap breathes between 0.002 and 0.02 (models of unit
 /// size); the slide towards the gap scales with the step.
 void coherentPath(benchmark::State& state, double step_angle, const std::string& section) {
+  const std::optional<Pair> found = pairOf(state);
+  if (!found) return;
+  const Pair& pair = *found;
   const int index = static_cast<int>(state.range(0));
-  const Loaded* la = load(kPairs[index][0]);
-  const Loaded* lb = load(kPairs[index][1]);
-  if (!la || !lb) {
-    state.SkipWithError("meshes not found");
-    return;
-  }
-  const Pair pair(la, lb);
   const std::string name = pairName(index);
   std::mt19937_64 rng(42 + static_cast<unsigned>(index));
   const Quat q0 = randomRotation(rng);
@@ -203,7 +210,7 @@ void coherentPath(benchmark::State& state, double step_angle, const std::string&
   const Eigen::AngleAxisd orbit_step(step_angle, orbit_axis);
   std::vector<sc::Rigid> path;
   std::vector<double> path_distance, moves;
-  Vec3 t = (la->radius + lb->radius) * u0;
+  Vec3 t = (pair.a->radius + pair.b->radius) * u0;
   Vec3 normal = u0;
   {  // start near contact
     const sc::Mat3 rotation = q0.toRotationMatrix();
@@ -235,7 +242,7 @@ void coherentPath(benchmark::State& state, double step_angle, const std::string&
     const sc::Rigid pose{rotation, t};
     if (!path.empty()) {
       double move = 0.0;
-      for (const Vec3& v : la->mesh.vertices)
+      for (const Vec3& v : pair.a->mesh.vertices)
         move = std::max(move, (pose * v - path.back() * v).norm());
       moves.push_back(move);
     }
@@ -317,14 +324,10 @@ void BM_CoherentHapticRate(benchmark::State& state) {
 /// (b) Cold random separated poses: a random orientation and direction, slid in from
 /// far to a log-uniform gap in [0.001, 0.3]; the pair state is forgotten every time.
 void BM_ColdRandom(benchmark::State& state) {
+  const std::optional<Pair> found = pairOf(state);
+  if (!found) return;
+  const Pair& pair = *found;
   const int index = static_cast<int>(state.range(0));
-  const Loaded* la = load(kPairs[index][0]);
-  const Loaded* lb = load(kPairs[index][1]);
-  if (!la || !lb) {
-    state.SkipWithError("meshes not found");
-    return;
-  }
-  const Pair pair(la, lb);
   const std::string name = pairName(index);
   std::mt19937_64 rng(1000 + static_cast<unsigned>(index));
   std::uniform_real_distribution<double> log_gap(std::log(1e-3), std::log(0.3));
@@ -332,7 +335,8 @@ void BM_ColdRandom(benchmark::State& state) {
   while (static_cast<int>(poses.size()) < kColdPoses) {
     const Quat q = randomRotation(rng);
     const Vec3 u = randomDirection(rng);
-    const double s = pair.approach(q, u, la->radius + lb->radius, std::exp(log_gap(rng)), 20);
+    const double s =
+        pair.approach(q, u, pair.a->radius + pair.b->radius, std::exp(log_gap(rng)), 20);
     if (s > 0.0) poses.push_back({q.toRotationMatrix(), s * u});
   }
   std::vector<double> ours, fcl_times, ours_cpu, fcl_cpu;

@@ -76,28 +76,49 @@ std::uint64_t edgeKey(int from, int to) {
          static_cast<std::uint32_t>(to);
 }
 
-/// All half-edges, sorted by (from, to) for lookup by triangleOf.
-std::vector<HalfEdge> sortedHalfEdges(const MeshData& mesh) {
-  std::vector<HalfEdge> edges;
-  edges.reserve(3 * mesh.triangles.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Tri& f = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k) edges.push_back({f[k], f[(k + 1) % 3], static_cast<int>(t)});
+/// The half-edges grouped by their first vertex (a counting sort, linear in the mesh):
+/// a lookup scans a vertex's few outgoing edges where a sorted table of all of them
+/// was binary-searched.
+class HalfEdgeIndex {
+ public:
+  explicit HalfEdgeIndex(const MeshData& mesh)
+      : start_(mesh.vertices.size() + 1, 0), edges_(3 * mesh.triangles.size()) {
+    for (const Tri& f : mesh.triangles) {
+      for (int k = 0; k < 3; ++k) ++start_[static_cast<std::size_t>(f[k]) + 1];
+    }
+    std::partial_sum(start_.begin(), start_.end(), start_.begin());
+    std::vector<int> next(start_.begin(), start_.end() - 1);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const Tri& f = mesh.triangles[t];
+      for (int k = 0; k < 3; ++k)
+        edges_[static_cast<std::size_t>(next[f[k]]++)] = {f[k], f[(k + 1) % 3],
+                                                          static_cast<int>(t)};
+    }
   }
-  std::sort(edges.begin(), edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return edgeKey(x.from, x.to) < edgeKey(y.from, y.to);
-  });
-  return edges;
-}
 
-/// The triangle holding half-edge from -> to, or -1. `edges` from sortedHalfEdges.
-int triangleOf(const std::vector<HalfEdge>& edges, int from, int to) {
-  const std::uint64_t key = edgeKey(from, to);
-  const auto it = std::lower_bound(
-      edges.begin(), edges.end(), key,
-      [](const HalfEdge& e, std::uint64_t k) { return edgeKey(e.from, e.to) < k; });
-  return it != edges.end() && edgeKey(it->from, it->to) == key ? it->tri : -1;
-}
+  const std::vector<HalfEdge>& all() const { return edges_; }
+
+  /// The triangle holding half-edge from -> to (the first in triangle order), or -1.
+  int triangleOf(int from, int to) const {
+    for (int i = start_[from]; i < start_[from + 1]; ++i) {
+      if (edges_[static_cast<std::size_t>(i)].to == to)
+        return edges_[static_cast<std::size_t>(i)].tri;
+    }
+    return -1;
+  }
+
+  /// How many triangles hold half-edge from -> to.
+  int count(int from, int to) const {
+    int n = 0;
+    for (int i = start_[from]; i < start_[from + 1]; ++i)
+      n += edges_[static_cast<std::size_t>(i)].to == to;
+    return n;
+  }
+
+ private:
+  std::vector<int> start_;  ///< per vertex: its first outgoing edge; one past the end last
+  std::vector<HalfEdge> edges_;
+};
 
 /// Position of vertex v in triangle t (v must be one of its corners).
 int cornerOf(const Tri& t, int v) { return t[0] == v ? 0 : t[1] == v ? 1 : 2; }
@@ -140,8 +161,10 @@ Status checkTriangles(const MeshData& mesh, const std::vector<Vec3>& p) {
   return Status::success();
 }
 
-/// Every undirected edge in exactly two triangles, once in each direction.
-Status checkEdges(const MeshData& mesh) {
+/// The first faulty edge in (lo, hi) order and why: an edge not in exactly two
+/// triangles once in each direction. Only run once checkEdges found a fault, so the
+/// message names the same edge whatever the mesh's order.
+Status edgeFault(const MeshData& mesh) {
   struct EdgeUse {
     int lo, hi, tri;
     bool forward;
@@ -185,6 +208,14 @@ Status checkEdges(const MeshData& mesh) {
   return Status::success();
 }
 
+/// Every undirected edge in exactly two triangles, once in each direction.
+Status checkEdges(const MeshData& mesh, const HalfEdgeIndex& index) {
+  for (const HalfEdge& e : index.all()) {
+    if (index.count(e.from, e.to) != 1 || index.count(e.to, e.from) != 1) return edgeFault(mesh);
+  }
+  return Status::success();
+}
+
 /// Every vertex's triangles form one fan (needs checkEdges to have passed).
 ///
 /// Why a pinched vertex is rejected: where two fans meet at one point (e.g. two
@@ -194,7 +225,7 @@ Status checkEdges(const MeshData& mesh) {
 /// Later stages rely on manifold vertices: the convex decomposition grows patches
 /// around vertices, and hill climbing and feature reporting assume each vertex
 /// has one ring of neighbours.
-Status checkFans(const MeshData& mesh, const std::vector<HalfEdge>& edges) {
+Status checkFans(const MeshData& mesh, const HalfEdgeIndex& edges) {
   // Corner (t, k) is joined to the corner at the same vertex in the triangle across
   // t's edge entering that vertex; each resulting set is one fan.
   DisjointSets fans(3 * mesh.triangles.size());
@@ -202,7 +233,7 @@ Status checkFans(const MeshData& mesh, const std::vector<HalfEdge>& edges) {
     const Tri& f = mesh.triangles[t];
     for (int k = 0; k < 3; ++k) {
       const int v = f[k], in = f[(k + 2) % 3];
-      const int other = triangleOf(edges, v, in);
+      const int other = edges.triangleOf(v, in);
       const int other_corner = cornerOf(mesh.triangles[other], v);
       fans.unite(static_cast<int>(3 * t) + k, 3 * other + other_corner);
     }
@@ -221,9 +252,9 @@ Status checkFans(const MeshData& mesh, const std::vector<HalfEdge>& edges) {
 }
 
 /// All triangles connected through shared edges (needs checkEdges to have passed).
-Status checkOneShell(const MeshData& mesh, const std::vector<HalfEdge>& edges) {
+Status checkOneShell(const MeshData& mesh, const HalfEdgeIndex& edges) {
   DisjointSets shells(mesh.triangles.size());
-  for (const HalfEdge& e : edges) shells.unite(e.tri, triangleOf(edges, e.to, e.from));
+  for (const HalfEdge& e : edges.all()) shells.unite(e.tri, edges.triangleOf(e.to, e.from));
   const int first = shells.find(0);
   int count = 1;
   int example = -1;
@@ -266,9 +297,9 @@ Vec3 faceNormal(const std::vector<Vec3>& p, const Tri& f) {
 /// Every edge convex or flat: the far vertex of the neighbour across each edge lies
 /// on or below the triangle's plane.
 bool edgesConvex(const MeshData& mesh, const std::vector<Vec3>& p, double tolerance) {
-  const std::vector<HalfEdge> edges = sortedHalfEdges(mesh);
-  for (const HalfEdge& e : edges) {
-    const int other = triangleOf(edges, e.to, e.from);
+  const HalfEdgeIndex edges(mesh);
+  for (const HalfEdge& e : edges.all()) {
+    const int other = edges.triangleOf(e.to, e.from);
     if (other < 0) return false;  // not closed: not a convex polyhedron either
     const Tri& g = mesh.triangles[other];
     const int far = g[(cornerOf(g, e.from) + 1) % 3];
@@ -412,8 +443,8 @@ Status validateClosed(MeshData& mesh, bool& flipped) {
   flipped = false;
   const std::vector<Vec3> p = unitBoxVertices(mesh);
   if (Status s = checkTriangles(mesh, p); !s.ok()) return s;
-  if (Status s = checkEdges(mesh); !s.ok()) return s;
-  const std::vector<HalfEdge> edges = sortedHalfEdges(mesh);
+  const HalfEdgeIndex edges(mesh);
+  if (Status s = checkEdges(mesh, edges); !s.ok()) return s;
   if (Status s = checkFans(mesh, edges); !s.ok()) return s;
   if (Status s = checkOneShell(mesh, edges); !s.ok()) return s;
   const VolumeSum volume = volumeSum(mesh, p);

@@ -18,6 +18,19 @@ struct Farther {
   }
 };
 
+/// Queues a node pair unless its bound prunes it (the policy is told) or the policy
+/// vetoes it (`admits` may adjust the copy it queues).
+template <class Policy, class Pair>
+void offer(Policy& policy, std::vector<Pair>& heap, Pair pair) {
+  if (policy.prunes(pair.bound)) {
+    policy.pruned(pair);
+    return;
+  }
+  if (!policy.admits(pair)) return;
+  heap.push_back(pair);
+  std::push_heap(heap.begin(), heap.end(), Farther());
+}
+
 // A policy says which bounds are pruned (`prunes`, monotone in the bound), how far
 // GJK on a node pair needs to look (`reach`), may veto a child pair (`admits`),
 // takes leaf pairs (`visit`, false to stop) and is told of each pair pruned by its
@@ -37,13 +50,7 @@ void GroupPairQuery::seedTraversal(Policy& policy, std::vector<NodePair>& heap) 
       root.t_slot = ts;
       root.o_slot = os;
       root.bound = std::max(0.0, sphereBound(root));
-      if (policy.prunes(root.bound)) {
-        policy.pruned(root);
-        continue;
-      }
-      if (!policy.admits(root)) continue;
-      heap.push_back(root);
-      std::push_heap(heap.begin(), heap.end(), Farther());
+      offer(policy, heap, root);
     }
   }
 }
@@ -91,13 +98,7 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
       (split_t ? c.t_node : c.o_node) = child;
       c.refined = false;
       c.bound = std::max(p.bound, sphereBound(c));
-      if (policy.prunes(c.bound)) {
-        policy.pruned(c);
-        continue;
-      }
-      if (!policy.admits(c)) continue;
-      heap.push_back(c);
-      std::push_heap(heap.begin(), heap.end(), Farther());
+      offer(policy, heap, c);
     }
   }
   heap.clear();

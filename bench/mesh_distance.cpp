@@ -436,21 +436,13 @@ BENCHMARK(BM_Preprocess)
     ->Iterations(1)
     ->UseManualTime()
     ->Unit(benchmark::kSecond);
-BENCHMARK(BM_CoherentTrajectory)
-    ->DenseRange(0, 1)
-    ->Iterations(1)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CoherentHapticRate)
-    ->DenseRange(0, 1)
-    ->Iterations(1)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ColdRandom)
-    ->DenseRange(0, 1)
-    ->Iterations(1)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+/// One timed run per pair of kPairs.
+void perPair(benchmark::internal::Benchmark* b) {
+  b->DenseRange(0, 1)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+BENCHMARK(BM_CoherentTrajectory)->Apply(perPair);
+BENCHMARK(BM_CoherentHapticRate)->Apply(perPair);
+BENCHMARK(BM_ColdRandom)->Apply(perPair);
 
 void writeCsv(const std::string& path) {
   sc::support::CsvFile f(path, "section,case,quantity,value,unit");

@@ -33,6 +33,7 @@ struct Elephants {
     const DirectedResult r = update(tracker, pose);
     return r.code == ErrorCode::Ok ? r.distance : -1.0;
   }
+  double size() const { return (model->bounds().max - model->bounds().min).norm(); }
   /// Offset along u where the target is about `gap` away (the distance is
   /// 1-Lipschitz in the offset: a step of d - gap never reaches contact).
   double offsetAtGap(const Mat3& q, const Vec3& u, double gap) const {
@@ -46,16 +47,22 @@ struct Elephants {
   }
 };
 
-TEST(WarmJump, CarriedTrackerEqualsAFreshOneAfterSidewaysJumps) {
+/// Two parts of one elephant model (CGAL's elephant), both at the origin; call as
+/// ASSERT_NO_FATAL_FAILURE(twoElephants(e)).
+void twoElephants(Elephants& e) {
   MeshData mesh;
   ASSERT_NO_FATAL_FAILURE(mesh = loadTestMesh("elephant"));
-  Elephants e;
   e.model = std::make_shared<const Model>(
       ModelKind::ClosedPolyhedron,
       std::vector<PiecePtr>{buildPiece(ModelKind::ClosedPolyhedron, mesh).value()});
   e.a = {e.model.get(), Rigid(), 0};
   e.b = {e.model.get(), Rigid(), 1};
-  const double size = (e.model->bounds().max - e.model->bounds().min).norm();
+}
+
+TEST(WarmJump, CarriedTrackerEqualsAFreshOneAfterSidewaysJumps) {
+  Elephants e;
+  ASSERT_NO_FATAL_FAILURE(twoElephants(e));
+  const double size = e.size();
   Rng rng(19);
   int compared = 0;
   for (int path = 0; path < 4; ++path) {
@@ -89,15 +96,9 @@ TEST(WarmJump, CarriedTrackerEqualsAFreshOneAfterSidewaysJumps) {
 /// fresh one answers at every jump: the distance, and inside the opponent the depth
 /// a fresh tracker resolves (resolve_initial_intersection), not the path's.
 TEST(WarmJump, BeyondTheTeleportDistanceEveryJumpEqualsAFreshTracker) {
-  MeshData mesh;
-  ASSERT_NO_FATAL_FAILURE(mesh = loadTestMesh("elephant"));
   Elephants e;
-  e.model = std::make_shared<const Model>(
-      ModelKind::ClosedPolyhedron,
-      std::vector<PiecePtr>{buildPiece(ModelKind::ClosedPolyhedron, mesh).value()});
-  e.a = {e.model.get(), Rigid(), 0};
-  e.b = {e.model.get(), Rigid(), 1};
-  const double size = (e.model->bounds().max - e.model->bounds().min).norm();
+  ASSERT_NO_FATAL_FAILURE(twoElephants(e));
+  const double size = e.size();
   Elephants carried = e;
   carried.settings.teleport_distance = 0.02 * size;
   carried.settings.resolve_initial_intersection = true;

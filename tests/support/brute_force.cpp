@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include "geometry/triangle_distance.h"
 #include "preprocess/convex_hull.h"
@@ -117,6 +119,18 @@ ExactDepth exactPenetrationDepth(const detail::ConvexPolytope& a, const Rigid& w
     }
   }
   return out;
+}
+
+bool eachEdgeOnceEachWay(const std::vector<Tri>& faces) {
+  std::map<std::pair<int, int>, int> directed;
+  for (const Tri& f : faces) {
+    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+  }
+  for (const auto& [edge, uses] : directed) {
+    const auto reverse = directed.find({edge.second, edge.first});
+    if (uses != 1 || reverse == directed.end() || reverse->second != 1) return false;
+  }
+  return true;
 }
 
 }  // namespace sc::test

@@ -29,6 +29,10 @@ double pointSurfaceDistance(const MeshData& mesh, const Vec3& p);
 /// Largest d . x over the polytope's vertices, each one tried.
 double supportValue(const detail::ConvexPolytope& poly, const Vec3& d);
 
+/// True when every directed edge of `faces` is used once and its reverse once: a
+/// closed surface, wound consistently.
+bool eachEdgeOnceEachWay(const std::vector<Tri>& faces);
+
 /// True when p (polytope frame) is inside every face plane, within `tolerance`.
 bool pointInConvexPolytope(const detail::ConvexPolytope& poly, const Vec3& p, double tolerance);
 

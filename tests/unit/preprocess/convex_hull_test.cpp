@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <limits>
-#include <map>
 #include <set>
 #include <utility>
 
@@ -20,16 +19,9 @@ namespace {
 
 /// Every directed edge once, its reverse once; Euler characteristic 2.
 void expectClosedOutward(const ConvexPolytope& hull) {
-  std::map<std::pair<int, int>, int> directed;
-  for (const Tri& f : hull.faces) {
-    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
-  }
-  for (const auto& [edge, uses] : directed) {
-    EXPECT_EQ(uses, 1);
-    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u);
-  }
+  EXPECT_TRUE(test::eachEdgeOnceEachWay(hull.faces));
   const int v = static_cast<int>(hull.vertices.size());
-  const int e = static_cast<int>(directed.size()) / 2;
+  const int e = 3 * static_cast<int>(hull.faces.size()) / 2;
   const int f = static_cast<int>(hull.faces.size());
   EXPECT_EQ(v - e + f, 2);
   // Outward and non-degenerate: every vertex is on the inner side of every face,

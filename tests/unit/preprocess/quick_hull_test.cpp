@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <limits>
-#include <map>
 #include <set>
 #include <utility>
 #include <vector>
@@ -27,14 +26,7 @@ std::set<int> originals(const ConvexPolytope& hull) {
 /// Every directed edge once with its reverse; every point inside; hill climbing
 /// from any start gives the brute-force support value.
 void expectValidHull(const ConvexPolytope& hull, const std::vector<Vec3>& points, test::Rng& rng) {
-  std::map<std::pair<int, int>, int> directed;
-  for (const Tri& f : hull.faces) {
-    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
-  }
-  for (const auto& [edge, uses] : directed) {
-    EXPECT_EQ(uses, 1);
-    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u);
-  }
+  EXPECT_TRUE(test::eachEdgeOnceEachWay(hull.faces));
   const double size = (hull.bounds.max - hull.bounds.min).norm();
   for (const Vec3& p : points) EXPECT_TRUE(test::pointInConvexPolytope(hull, p, 1e-12 * size));
   for (std::size_t i = 0; i < hull.vertices.size(); ++i)

@@ -18,6 +18,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness.h"
@@ -104,12 +105,14 @@ const Loaded* load(const std::string& name) {
 struct Pair {
   const Loaded* a;
   const Loaded* b;
+  std::string name;  ///< "target-opponent"
   sc::Part part_a, part_b;
   sc::SceneSettings settings;  // max_distance = +inf: every pose gets its distance
 
-  Pair(const Loaded* la, const Loaded* lb)
+  Pair(const Loaded* la, const Loaded* lb, std::string pair_name)
       : a(la),
         b(lb),
+        name(std::move(pair_name)),
         part_a{la->model.get(), sc::Rigid(), 0},
         part_b{lb->model.get(), sc::Rigid(), 1} {}
 
@@ -166,7 +169,7 @@ std::optional<Pair> pairOf(benchmark::State& state) {
   const int index = static_cast<int>(state.range(0));
   const Loaded* la = load(kPairs[index][0]);
   const Loaded* lb = load(kPairs[index][1]);
-  if (la && lb) return Pair(la, lb);
+  if (la && lb) return Pair(la, lb, pairName(index));
   state.SkipWithError("meshes not found");
   return std::nullopt;
 }
@@ -192,9 +195,8 @@ void coherentPath(benchmark::State& state, double step_angle, const std::string&
   const std::optional<Pair> found = pairOf(state);
   if (!found) return;
   const Pair& pair = *found;
-  const int index = static_cast<int>(state.range(0));
-  const std::string name = pairName(index);
-  std::mt19937_64 rng(42 + static_cast<unsigned>(index));
+  const std::string& name = pair.name;
+  std::mt19937_64 rng(42 + static_cast<unsigned>(state.range(0)));
   const Quat q0 = randomRotation(rng);
   const Vec3 u0 = randomDirection(rng);
   const Vec3 body_axis = randomDirection(rng);
@@ -327,9 +329,8 @@ void BM_ColdRandom(benchmark::State& state) {
   const std::optional<Pair> found = pairOf(state);
   if (!found) return;
   const Pair& pair = *found;
-  const int index = static_cast<int>(state.range(0));
-  const std::string name = pairName(index);
-  std::mt19937_64 rng(1000 + static_cast<unsigned>(index));
+  const std::string& name = pair.name;
+  std::mt19937_64 rng(1000 + static_cast<unsigned>(state.range(0)));
   std::uniform_real_distribution<double> log_gap(std::log(1e-3), std::log(0.3));
   std::vector<sc::Rigid> poses;
   while (static_cast<int>(poses.size()) < kColdPoses) {

@@ -141,32 +141,31 @@ void GroupPairQuery::bind(const GroupView& target, const GroupView& opponent) {
 
 namespace {
 
+/// A side's leaves, listed again only when `valid` was cleared (pieces or pose changed).
 template <class Slots, class LeafAt>
-void listLeaves(const Slots& slots, int count, LeafAt&& leaf_at, std::vector<Leaf>& out) {
+const std::vector<Leaf>& listLeaves(const Slots& slots, int count, LeafAt&& leaf_at, bool& valid,
+                                    std::vector<Leaf>& out) {
+  if (valid) return out;
   out.clear();
-  if (slots.empty()) return;
-  out.reserve(static_cast<std::size_t>(count));
-  for (int i = 0; i < count; ++i) out.push_back(leaf_at(i));
+  if (!slots.empty()) {
+    out.reserve(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) out.push_back(leaf_at(i));
+  }
+  valid = true;
+  return out;
 }
 
 }  // namespace
 
 const std::vector<Leaf>& GroupPairQuery::targetLeaves() const {
-  if (!t_leaves_valid_) {
-    listLeaves(
-        t_slots_, t_leaf_count_, [this](int i) { return targetLeaf(i); }, t_leaves_);
-    t_leaves_valid_ = true;
-  }
-  return t_leaves_;
+  return listLeaves(
+      t_slots_, t_leaf_count_, [this](int i) { return targetLeaf(i); }, t_leaves_valid_, t_leaves_);
 }
 
 const std::vector<Leaf>& GroupPairQuery::opponentLeaves() const {
-  if (!o_leaves_valid_) {
-    listLeaves(
-        o_slots_, o_leaf_count_, [this](int i) { return opponentLeaf(i); }, o_leaves_);
-    o_leaves_valid_ = true;
-  }
-  return o_leaves_;
+  return listLeaves(
+      o_slots_, o_leaf_count_, [this](int i) { return opponentLeaf(i); }, o_leaves_valid_,
+      o_leaves_);
 }
 
 void GroupPairQuery::updateGroupSphere() {

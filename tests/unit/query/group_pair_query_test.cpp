@@ -118,6 +118,22 @@ struct ToiTally {
 /// never more conservative than all pairs' advancement (and the same unless a pair's
 /// bounding spheres pass within stop_gap / 2); at the end every pair not skipped
 /// keeps stop_gap / 2.
+/// The same leaf pairs (sorted by leaves: near-equal gaps from other warm starts may
+/// order them apart) with gaps equal to 1e-12.
+void expectSameContacts(std::vector<LeafContact> got, std::vector<LeafContact> want) {
+  const auto byLeaves = [](const LeafContact& a, const LeafContact& b) {
+    return LeafPair{a.t_leaf, a.o_leaf} < LeafPair{b.t_leaf, b.o_leaf};
+  };
+  std::sort(got.begin(), got.end(), byLeaves);
+  std::sort(want.begin(), want.end(), byLeaves);
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    ASSERT_EQ(got[i].t_leaf, want[i].t_leaf);
+    ASSERT_EQ(got[i].o_leaf, want[i].o_leaf);
+    EXPECT_NEAR(got[i].gap, want[i].gap, 1e-12);
+  }
+}
+
 void checkToi(GroupPairQuery& q, const BruteForce& brute, const Rigid& pose, const Vec3& delta,
               double stop_gap, const std::vector<LeafPair>& skip, ToiTally& tally) {
   const double s = q.translationToi(pose, delta, stop_gap, skip);
@@ -372,18 +388,7 @@ TEST_F(GroupPairQueryTest, ContactsNearAndItsTimeOfImpactEqualTraversalsAlongASl
       const bool traversed = near.counters().node_pairs > 0 || near.counters().shortcut;
       if (near.counters().ahead_installed) ++ahead;
       plain.contacts(pose, threshold, want);
-      // The same pairs; near-equal gaps from other warm starts may order them apart.
-      const auto byLeaves = [](const LeafContact& a, const LeafContact& b) {
-        return LeafPair{a.t_leaf, a.o_leaf} < LeafPair{b.t_leaf, b.o_leaf};
-      };
-      std::sort(got.begin(), got.end(), byLeaves);
-      std::sort(want.begin(), want.end(), byLeaves);
-      ASSERT_EQ(got.size(), want.size());
-      for (std::size_t i = 0; i < got.size(); ++i) {
-        EXPECT_EQ(got[i].t_leaf, want[i].t_leaf);
-        EXPECT_EQ(got[i].o_leaf, want[i].o_leaf);
-        EXPECT_NEAR(got[i].gap, want[i].gap, 1e-12);
-      }
+      ASSERT_NO_FATAL_FAILURE(expectSameContacts(got, want));
       if (!traversed) ++reused;
       if (!want.empty()) ++with_contacts;
       // A short translation's time of impact from the kept pairs equals the
@@ -436,17 +441,7 @@ TEST_F(GroupPairQueryTest, ContactsNearRebuiltFromTheFrontEqualTraversalsFromThe
       std::vector<LeafContact> got, want;
       near.contactsNear(pose, threshold, margin, got);
       plain.contacts(pose, threshold, want);
-      const auto byLeaves = [](const LeafContact& a, const LeafContact& b) {
-        return LeafPair{a.t_leaf, a.o_leaf} < LeafPair{b.t_leaf, b.o_leaf};
-      };
-      std::sort(got.begin(), got.end(), byLeaves);
-      std::sort(want.begin(), want.end(), byLeaves);
-      ASSERT_EQ(got.size(), want.size());
-      for (std::size_t i = 0; i < got.size(); ++i) {
-        ASSERT_EQ(got[i].t_leaf, want[i].t_leaf);
-        ASSERT_EQ(got[i].o_leaf, want[i].o_leaf);
-        EXPECT_NEAR(got[i].gap, want[i].gap, 1e-12);
-      }
+      ASSERT_NO_FATAL_FAILURE(expectSameContacts(got, want));
       if (!want.empty()) ++with_contacts;
     }
   }

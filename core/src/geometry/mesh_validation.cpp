@@ -4,6 +4,7 @@
 #include "geometry/mesh_validation.h"
 
 #include "geometry/math_util.h"
+#include "geometry/triangle_adjacency.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,61 +65,10 @@ std::vector<Vec3> unitBoxVertices(const MeshData& mesh) {
   return unit;
 }
 
-/// One directed edge of a triangle.
-struct HalfEdge {
-  int from;
-  int to;
-  int tri;
-};
-
 std::uint64_t edgeKey(int from, int to) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) |
          static_cast<std::uint32_t>(to);
 }
-
-/// The half-edges grouped by their first vertex (a counting sort, linear in the mesh):
-/// a lookup scans a vertex's few outgoing edges where a sorted table of all of them
-/// was binary-searched.
-class HalfEdgeIndex {
- public:
-  explicit HalfEdgeIndex(const MeshData& mesh)
-      : start_(mesh.vertices.size() + 1, 0), edges_(3 * mesh.triangles.size()) {
-    for (const Tri& f : mesh.triangles) {
-      for (int k = 0; k < 3; ++k) ++start_[static_cast<std::size_t>(f[k]) + 1];
-    }
-    std::partial_sum(start_.begin(), start_.end(), start_.begin());
-    std::vector<int> next(start_.begin(), start_.end() - 1);
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const Tri& f = mesh.triangles[t];
-      for (int k = 0; k < 3; ++k)
-        edges_[static_cast<std::size_t>(next[f[k]]++)] = {f[k], f[(k + 1) % 3],
-                                                          static_cast<int>(t)};
-    }
-  }
-
-  const std::vector<HalfEdge>& all() const { return edges_; }
-
-  /// The triangle holding half-edge from -> to (the first in triangle order), or -1.
-  int triangleOf(int from, int to) const {
-    for (int i = start_[from]; i < start_[from + 1]; ++i) {
-      if (edges_[static_cast<std::size_t>(i)].to == to)
-        return edges_[static_cast<std::size_t>(i)].tri;
-    }
-    return -1;
-  }
-
-  /// How many triangles hold half-edge from -> to.
-  int count(int from, int to) const {
-    int n = 0;
-    for (int i = start_[from]; i < start_[from + 1]; ++i)
-      n += edges_[static_cast<std::size_t>(i)].to == to;
-    return n;
-  }
-
- private:
-  std::vector<int> start_;  ///< per vertex: its first outgoing edge; one past the end last
-  std::vector<HalfEdge> edges_;
-};
 
 /// Position of vertex v in triangle t (v must be one of its corners).
 int cornerOf(const Tri& t, int v) { return t[0] == v ? 0 : t[1] == v ? 1 : 2; }
@@ -162,8 +112,8 @@ Status checkTriangles(const MeshData& mesh, const std::vector<Vec3>& p) {
 }
 
 /// The first faulty edge in (lo, hi) order and why: an edge not in exactly two
-/// triangles once in each direction. Only run once checkEdges found a fault, so the
-/// message names the same edge whatever the mesh's order.
+/// triangles once in each direction. Only run once the adjacency found a fault, so
+/// the message names the same edge whatever the mesh's order.
 Status edgeFault(const MeshData& mesh) {
   struct EdgeUse {
     int lo, hi, tri;
@@ -208,15 +158,7 @@ Status edgeFault(const MeshData& mesh) {
   return Status::success();
 }
 
-/// Every undirected edge in exactly two triangles, once in each direction.
-Status checkEdges(const MeshData& mesh, const HalfEdgeIndex& index) {
-  for (const HalfEdge& e : index.all()) {
-    if (index.count(e.from, e.to) != 1 || index.count(e.to, e.from) != 1) return edgeFault(mesh);
-  }
-  return Status::success();
-}
-
-/// Every vertex's triangles form one fan (needs checkEdges to have passed).
+/// Every vertex's triangles form one fan (over a built adjacency).
 ///
 /// Why a pinched vertex is rejected: where two fans meet at one point (e.g. two
 /// tetrahedra touching at a vertex) the surface is not a
@@ -225,15 +167,15 @@ Status checkEdges(const MeshData& mesh, const HalfEdgeIndex& index) {
 /// Later stages rely on manifold vertices: the convex decomposition grows patches
 /// around vertices, and hill climbing and feature reporting assume each vertex
 /// has one ring of neighbours.
-Status checkFans(const MeshData& mesh, const HalfEdgeIndex& edges) {
+Status checkFans(const MeshData& mesh, const TriangleAdjacency& adjacency) {
   // Corner (t, k) is joined to the corner at the same vertex in the triangle across
   // t's edge entering that vertex; each resulting set is one fan.
   DisjointSets fans(3 * mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const Tri& f = mesh.triangles[t];
     for (int k = 0; k < 3; ++k) {
-      const int v = f[k], in = f[(k + 2) % 3];
-      const int other = edges.triangleOf(v, in);
+      const int v = f[k];
+      const int other = adjacency.neighbour(static_cast<int>(t), (k + 2) % 3);
       const int other_corner = cornerOf(mesh.triangles[other], v);
       fans.unite(static_cast<int>(3 * t) + k, 3 * other + other_corner);
     }
@@ -251,10 +193,12 @@ Status checkFans(const MeshData& mesh, const HalfEdgeIndex& edges) {
   return Status::success();
 }
 
-/// All triangles connected through shared edges (needs checkEdges to have passed).
-Status checkOneShell(const MeshData& mesh, const HalfEdgeIndex& edges) {
+/// All triangles connected through shared edges (over a built adjacency).
+Status checkOneShell(const MeshData& mesh, const TriangleAdjacency& adjacency) {
   DisjointSets shells(mesh.triangles.size());
-  for (const HalfEdge& e : edges.all()) shells.unite(e.tri, edges.triangleOf(e.to, e.from));
+  for (int t = 0; t < adjacency.triangleCount(); ++t) {
+    for (int k = 0; k < 3; ++k) shells.unite(t, adjacency.neighbour(t, k));
+  }
   const int first = shells.find(0);
   int count = 1;
   int example = -1;
@@ -297,14 +241,17 @@ Vec3 faceNormal(const std::vector<Vec3>& p, const Tri& f) {
 /// Every edge convex or flat: the far vertex of the neighbour across each edge lies
 /// on or below the triangle's plane.
 bool edgesConvex(const MeshData& mesh, const std::vector<Vec3>& p, double tolerance) {
-  const HalfEdgeIndex edges(mesh);
-  for (const HalfEdge& e : edges.all()) {
-    const int other = edges.triangleOf(e.to, e.from);
-    if (other < 0) return false;  // not closed: not a convex polyhedron either
-    const Tri& g = mesh.triangles[other];
-    const int far = g[(cornerOf(g, e.from) + 1) % 3];
-    const Vec3 n = faceNormal(p, mesh.triangles[e.tri]);
-    if (n.dot(p[far] - p[e.from]) > tolerance) return false;
+  const Result<TriangleAdjacency> adjacency = TriangleAdjacency::build(mesh);
+  if (!adjacency.ok()) return false;  // not closed: not a convex polyhedron either
+  for (int t = 0; t < adjacency.value().triangleCount(); ++t) {
+    const Tri& f = mesh.triangles[t];
+    const Vec3 n = faceNormal(p, f);
+    for (int k = 0; k < 3; ++k) {
+      // The neighbour's copy of edge k runs the other way; its third corner is far.
+      const Tri& g = mesh.triangles[adjacency.value().neighbour(t, k)];
+      const int far = g[(adjacency.value().neighbourEdge(t, k) + 2) % 3];
+      if (n.dot(p[far] - p[f[k]]) > tolerance) return false;
+    }
   }
   return true;
 }
@@ -443,10 +390,13 @@ Status validateClosed(MeshData& mesh, bool& flipped) {
   flipped = false;
   const std::vector<Vec3> p = unitBoxVertices(mesh);
   if (Status s = checkTriangles(mesh, p); !s.ok()) return s;
-  const HalfEdgeIndex edges(mesh);
-  if (Status s = checkEdges(mesh, edges); !s.ok()) return s;
-  if (Status s = checkFans(mesh, edges); !s.ok()) return s;
-  if (Status s = checkOneShell(mesh, edges); !s.ok()) return s;
+  const Result<TriangleAdjacency> adjacency = TriangleAdjacency::build(mesh);
+  if (!adjacency.ok()) {
+    const Status fault = edgeFault(mesh);
+    return fault.ok() ? adjacency.status() : fault;
+  }
+  if (Status s = checkFans(mesh, adjacency.value()); !s.ok()) return s;
+  if (Status s = checkOneShell(mesh, adjacency.value()); !s.ok()) return s;
   const VolumeSum volume = volumeSum(mesh, p);
   if (std::abs(volume.six_volume) <= kFlatVolume * volume.scale) {
     return invalidGeometry("the surface encloses no volume (it is flat or folded onto itself)");

@@ -2,58 +2,72 @@
 #include "geometry/triangle_adjacency.h"
 
 #include <algorithm>
-#include <cstdint>
+#include <numeric>
 #include <string>
 
 namespace sc::detail {
 namespace {
 
-struct DirectedEdge {
-  std::uint64_t key;  ///< (from, to) packed
+/// Edge k of triangle `tri`, filed under its first vertex.
+struct OutEdge {
+  int to;
   int tri;
   int k;
 };
 
-std::uint64_t edgeKey(int from, int to) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) |
-         static_cast<std::uint32_t>(to);
+bool byTarget(const OutEdge& a, const OutEdge& b) {
+  return a.to != b.to ? a.to < b.to : a.tri < b.tri;
 }
 
 }  // namespace
 
 Result<TriangleAdjacency> TriangleAdjacency::build(const MeshData& mesh) {
   const int n = static_cast<int>(mesh.triangles.size());
-  std::vector<DirectedEdge> edges;
-  edges.reserve(3 * static_cast<std::size_t>(n));
+  // Directed edges grouped by their first vertex (a counting sort, linear in the mesh),
+  // each group sorted by the last vertex: a lookup is a search in one vertex's few
+  // edges, and a vertex of many triangles costs a sort, not a quadratic scan.
+  std::vector<int> start(mesh.vertices.size() + 1, 0);
+  for (const Tri& f : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) ++start[static_cast<std::size_t>(f[k]) + 1];
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<OutEdge> out(3 * static_cast<std::size_t>(n));
+  std::vector<int> next(start.begin(), start.end() - 1);
   for (int t = 0; t < n; ++t) {
     const Tri& f = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k) edges.push_back({edgeKey(f[k], f[(k + 1) % 3]), t, k});
+    for (int k = 0; k < 3; ++k)
+      out[static_cast<std::size_t>(next[f[k]]++)] = {f[(k + 1) % 3], t, k};
   }
-  std::sort(edges.begin(), edges.end(),
-            [](const DirectedEdge& a, const DirectedEdge& b) { return a.key < b.key; });
-  for (std::size_t i = 1; i < edges.size(); ++i) {
-    if (edges[i].key == edges[i - 1].key) {
-      return Status(ErrorCode::InvalidGeometry, "triangles " + std::to_string(edges[i - 1].tri) +
-                                                    " and " + std::to_string(edges[i].tri) +
-                                                    " share an edge with the same winding");
+  const auto group = [&](int v) {
+    return std::make_pair(out.begin() + start[v], out.begin() + start[v + 1]);
+  };
+  for (int v = 0; v + 1 < static_cast<int>(start.size()); ++v) {
+    const auto [first, last] = group(v);
+    std::sort(first, last, byTarget);
+    for (auto it = first; it != last && it + 1 != last; ++it) {
+      if (it->to == (it + 1)->to) {
+        return Status(ErrorCode::InvalidGeometry, "triangles " + std::to_string(it->tri) + " and " +
+                                                      std::to_string((it + 1)->tri) +
+                                                      " share an edge with the same winding");
+      }
     }
   }
   TriangleAdjacency adjacency;
   adjacency.neighbours_.assign(n, {-1, -1, -1});
   adjacency.neighbour_edges_.assign(n, {-1, -1, -1});
-  for (const DirectedEdge& e : edges) {
-    const Tri& f = mesh.triangles[e.tri];
-    const std::uint64_t twin = edgeKey(f[(e.k + 1) % 3], f[e.k]);
-    const auto it =
-        std::lower_bound(edges.begin(), edges.end(), twin,
-                         [](const DirectedEdge& a, std::uint64_t key) { return a.key < key; });
-    if (it == edges.end() || it->key != twin) {
-      return Status(ErrorCode::InvalidGeometry,
-                    "edge " + std::to_string(e.k) + " of triangle " + std::to_string(e.tri) +
-                        " has no opposite edge: the surface is not closed");
+  for (int v = 0; v + 1 < static_cast<int>(start.size()); ++v) {
+    for (auto [e, end] = group(v); e != end; ++e) {
+      const auto [first, last] = group(e->to);
+      const auto twin =
+          std::lower_bound(first, last, v, [](const OutEdge& a, int to) { return a.to < to; });
+      if (twin == last || twin->to != v) {
+        return Status(ErrorCode::InvalidGeometry,
+                      "edge " + std::to_string(e->k) + " of triangle " + std::to_string(e->tri) +
+                          " has no opposite edge: the surface is not closed");
+      }
+      adjacency.neighbours_[e->tri][e->k] = twin->tri;
+      adjacency.neighbour_edges_[e->tri][e->k] = static_cast<signed char>(twin->k);
     }
-    adjacency.neighbours_[e.tri][e.k] = it->tri;
-    adjacency.neighbour_edges_[e.tri][e.k] = static_cast<signed char>(it->k);
   }
   return adjacency;
 }

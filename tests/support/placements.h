@@ -43,9 +43,9 @@ inline double quatDistance(const Quat& a, const Quat& b) {
 
 /// Relative tolerance of a value that went through `Real`.
 template <class Real>
-constexpr double kRelTol = 1e-12;
+inline constexpr double kRelTol = 1e-12;
 template <>
-constexpr double kRelTol<float> = 1e-6;  // ~8 float ulps
+inline constexpr double kRelTol<float> = 1e-6;  // ~8 float ulps
 
 /// Tolerance on a value of `magnitude` that went through `Real`.
 template <class Real>

@@ -9,12 +9,16 @@ namespace sc::support {
 
 Quat randomRotation(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
-  return Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
+  // In sequence, last first: the former Quat(n, n, n, n)'s order under GCC (the
+  // order of arguments is unspecified; figures must not depend on the compiler).
+  const double z = n(rng), y = n(rng), x = n(rng), w = n(rng);
+  return Quat(w, x, y, z).normalized();
 }
 
 Vec3 randomDirection(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(rng), n(rng), n(rng)).normalized();
+  const double z = n(rng), y = n(rng), x = n(rng);  // GCC's order, as above
+  return Vec3(x, y, z).normalized();
 }
 
 double quantile(std::vector<double> samples, double q, QuantileRank rank) {

@@ -147,35 +147,54 @@ struct ConvexPair {
   }
 };
 
+/// The pair at one pose of the proxy: its closest points and, within the tolerance,
+/// the row of its contact (zero skin).
+struct Probe {
+  LeafContact c;
+  bool contact = false;
+  Vec3 n = Vec3::UnitZ();
+  double b = 0.0;
+};
+
+Probe probeAt(const ConvexPair& pair, const Rigid& pose, const Vec3& center, const Rigid& previous,
+              double tolerance) {
+  Probe p;
+  bool beyond = false;
+  p.c = pair.at(pose, tolerance, beyond);
+  p.contact = !beyond && p.c.gap <= tolerance;
+  if (p.contact) pair.row(p.c, pose, pose.rotation * center, previous, p.n, p.b);
+  return p;
+}
+
 /// The general path's slide for one pair: y, the proxy's centre, moves towards the
 /// goal's centre, projected on the contact's plane (at the skin) while within the
-/// tolerance, else advanced conservatively. Returns the iterations.
+/// tolerance, else advanced conservatively. Returns the iterations; `settled` is the
+/// probe at y when the slide stopped there (as the general path's memo of the last
+/// contacts, it spares the report measuring the same pose again).
 int slide(const ConvexPair& pair, const Mat3& rotation, const Vec3& goal_center, const Vec3& center,
-          const PairSettings& settings, const Rigid& previous, double size, Vec3& y) {
+          const PairSettings& settings, const Rigid& previous, double size, Vec3& y, Probe& settled,
+          bool& has_settled) {
   const double skin = 0.25 * settings.tolerance;
+  has_settled = false;
   int k = 0;
   for (; k < settings.max_iterations; ++k) {
     const Rigid pose = poseAt(rotation, center, y);
-    bool beyond = false;
-    const LeafContact c = pair.at(pose, settings.tolerance, beyond);
-    const bool contact = !beyond && c.gap <= settings.tolerance;
-    Vec3 z = goal_center;
-    if (contact) {
-      Vec3 n;
-      double b = 0.0;
-      pair.row(c, pose, rotation * center, previous, n, b);
-      z = projectOnto(goal_center, n, b + skin);
-    }
+    const Probe p = probeAt(pair, pose, center, previous, settings.tolerance);
+    const Vec3 z = p.contact ? projectOnto(goal_center, p.n, p.b + skin) : goal_center;
     const Vec3 delta = z - y;
     // Settled when the step is rounding: of the pose, and of the normal (its closest
     // points round by ~1e-15 L at a gap >= skin/2) turning the projection of a goal
     // |goal - z| away. The general path's bound omits the second: deep, it can
     // spin on it to its last iteration.
     const double rounding = 1e-12 * (size + y.norm());
-    if (delta.norm() <= rounding * (1.0 + (goal_center - z).norm() / skin)) break;
-    const double s = contact ? 1.0 : pair.advance(pose, delta, skin);
+    if (delta.norm() <= rounding * (1.0 + (goal_center - z).norm() / skin)) {
+      settled = p;
+      has_settled = true;
+      break;
+    }
+    const double s = p.contact ? 1.0 : pair.advance(pose, delta, skin);
     y = s >= 1.0 ? z : Vec3(y + s * delta);
-    if (!contact && s >= 1.0) {  // reached the goal unobstructed
+    if (!p.contact && s >= 1.0) {  // reached the goal unobstructed
       ++k;
       break;
     }
@@ -198,19 +217,14 @@ void reportApart(const ConvexPair& pair, const Rigid& goal, const PairSettings& 
 /// The depth at `proxy` against the contact's exact plane (zero skin), as the
 /// general path's projectTranslation; false when the goal only touches (then
 /// `touch_normal` is the contact's normal, if any).
-bool reportPenetration(const ConvexPair& pair, const Rigid& proxy, const Rigid& previous,
+bool reportPenetration(const ConvexPair& pair, const Rigid& proxy, const Probe& at_proxy,
                        const Rigid& goal, const Vec3& center, const PairSettings& settings,
                        bool ran_out, Vec3& touch_normal, ProxyOutcome& out) {
-  bool beyond = false;
-  LeafContact c = pair.at(proxy, settings.tolerance, beyond);
-  const bool contact = !beyond && c.gap <= settings.tolerance;
+  const Probe& p = at_proxy;
   Rigid contact_pose = proxy;
-  Vec3 normal = Vec3::UnitZ();
-  if (contact) {
+  if (p.contact) {
     const Vec3 y = proxy * center;
-    double b = 0.0;
-    pair.row(c, proxy, proxy.rotation * center, previous, normal, b);
-    const Vec3 z = projectOnto(goal * center, normal, b);
+    const Vec3 z = projectOnto(goal * center, p.n, p.b);
     if ((z - y).norm() <= settings.tolerance) contact_pose = poseAt(proxy.rotation, center, z);
   }
   const Vec3 tpdv = goal * center - contact_pose * center;
@@ -218,7 +232,7 @@ bool reportPenetration(const ConvexPair& pair, const Rigid& proxy, const Rigid& 
                         ? Vec3::Zero()
                         : rotationVector(goal.rotation * contact_pose.rotation.transpose());
   if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) {  // the goal only touches
-    if (contact) touch_normal = normal;
+    if (p.contact) touch_normal = p.n;
     return false;
   }
   out.code = ErrorCode::Ok;
@@ -227,11 +241,12 @@ bool reportPenetration(const ConvexPair& pair, const Rigid& proxy, const Rigid& 
   out.tpdv = tpdv;
   out.rpdv = rpdv;
   out.distance = -tpdv.norm();
-  out.lagging = ran_out || !contact;
+  out.lagging = ran_out || !p.contact;
   // A lagging proxy with nothing within the tolerance: its closest points name
   // where the contact will be.
-  out.contact = contact ? c : pair.at(proxy, kInfinity, beyond);
-  if (contact) out.contact.normal = normal;
+  bool beyond = false;
+  out.contact = p.contact ? p.c : pair.at(proxy, kInfinity, beyond);
+  if (p.contact) out.contact.normal = p.n;
   out.contact.point_t = contact_pose * (proxy.inverse() * out.contact.point_t);
   return true;
 }
@@ -260,7 +275,10 @@ bool trackConvexPair(const GroupPairQuery& query, const GroupView& target,
   const Vec3 goal_center = goal * center;
   const double size = query.targetSize();
   Vec3 y = previous * center;
-  result.iterations = slide(pair, rotation, goal_center, center, settings, previous, size, y);
+  Probe settled;
+  bool has_settled = false;
+  result.iterations =
+      slide(pair, rotation, goal_center, center, settings, previous, size, y, settled, has_settled);
   Rigid proxy = poseAt(rotation, center, y);
   // Within the rounding of a pose written as a centre and a rotation, at the goal.
   const bool reached =
@@ -270,11 +288,15 @@ bool trackConvexPair(const GroupPairQuery& query, const GroupView& target,
   if (!reached && mode == RotationMode::None && !tracker.penetrating()) return false;
   const bool ran_out = result.iterations >= settings.max_iterations;
   Vec3 touch_normal = Vec3::Zero();
-  if (!reached && reportPenetration(pair, proxy, previous, goal, center, settings, ran_out,
-                                    touch_normal, result)) {
-    tracker.startAt(proxy, true);
-    out = result;
-    return true;
+  if (!reached) {
+    const Probe at_proxy =
+        has_settled ? settled : probeAt(pair, proxy, center, previous, settings.tolerance);
+    if (reportPenetration(pair, proxy, at_proxy, goal, center, settings, ran_out, touch_normal,
+                          result)) {
+      tracker.startAt(proxy, true);
+      out = result;
+      return true;
+    }
   }
   tracker.startAt(goal, false);
   reportApart(pair, goal, settings, result);

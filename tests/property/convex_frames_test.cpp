@@ -110,6 +110,8 @@ void runPath(const ModelPtr& a, const ModelPtr& b, const std::vector<Placement>&
   const Part part_a{a.get(), Rigid(), 1}, part_b{b.get(), Rigid(), 2};
   const GroupView gb{&part_b, 1, pb};
   Direction general, convex;
+  PairTracker api;  // takes the convex path: the same outcome to the bit
+  DirectedResult out[2];
   for (const Placement& pa : path) {
     const GroupView ga{&part_a, 1, pa};
     const double scale = pa.world_center.norm() + pb.world_center.norm() + settings.tolerance * 1e3;
@@ -122,6 +124,13 @@ void runPath(const ModelPtr& a, const ModelPtr& b, const std::vector<Placement>&
     tally.spun += g.iterations >= kMaxIterations && c.iterations < kMaxIterations;
     tally.penetrating += c.penetrating;
     tally.touching += c.code == ErrorCode::Ok && !c.penetrating && c.distance <= settings.tolerance;
+    api.update(ga, gb, {true, false}, settings, out);
+    ASSERT_EQ(out[0].code, c.code);
+    if (c.code != ErrorCode::Ok) continue;
+    EXPECT_EQ(out[0].distance, c.distance);
+    EXPECT_EQ(out[0].hasDepth(), c.penetrating);
+    const Status s = detail::checkResult(out[0], pa, pb);
+    EXPECT_TRUE(s.ok()) << s.message();
   }
   // The convex path took every update but None mode's first contacts.
   EXPECT_GE(convex.direct, static_cast<int>(path.size()) - 3);

@@ -27,6 +27,64 @@ constexpr std::size_t kVertexBytes = 3 * sizeof(double) + sizeof(std::int32_t);
 constexpr std::size_t kFaceBytes = 4 * sizeof(std::int32_t);
 constexpr std::size_t kNodeBytes = 3 * sizeof(std::int32_t);
 
+/// payloadChecksum taken a piece at a time: whole 32-byte blocks go through the four
+/// lanes, a partial one waits for the next piece, so the result does not depend on
+/// how the bytes are split.
+class PayloadHash {
+ public:
+  void update(const std::uint8_t* p, std::size_t n) {
+    total_ += n;
+    if (pending_ > 0) {
+      const std::size_t take = std::min(n, kBlock - pending_);
+      std::memcpy(block_ + pending_, p, take);
+      pending_ += take;
+      p += take;
+      n -= take;
+      if (pending_ < kBlock) return;
+      mixBlock(block_);
+      pending_ = 0;
+    }
+    for (; n >= kBlock; p += kBlock, n -= kBlock) mixBlock(p);
+    std::memcpy(block_, p, n);
+    pending_ = n;
+  }
+  /// The checksum of everything so far: the last partial block zero-padded, then
+  /// the lanes and the length folded together.
+  std::uint64_t value() const {
+    PayloadHash last = *this;
+    if (last.pending_ > 0) {
+      std::memset(last.block_ + last.pending_, 0, kBlock - last.pending_);
+      last.mixBlock(last.block_);
+    }
+    std::uint64_t h = total_ * kPrime1;
+    for (const std::uint64_t lane : last.lanes_) h = round(h, lane);
+    h ^= h >> 29;
+    h *= kPrime2;
+    return h ^ (h >> 32);
+  }
+
+ private:
+  static constexpr std::size_t kBlock = 32;
+  static constexpr std::uint64_t kPrime1 = 0x9E3779B185EBCA87ull;
+  static constexpr std::uint64_t kPrime2 = 0xC2B2AE3D27D4EB4Full;
+  static std::uint64_t round(std::uint64_t lane, std::uint64_t word) {
+    lane += word * kPrime2;
+    lane = (lane << 31) | (lane >> 33);
+    return lane * kPrime1;
+  }
+  void mixBlock(const std::uint8_t* p) {
+    for (int k = 0; k < 4; ++k) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, p + 8 * k, sizeof(word));
+      lanes_[k] = round(lanes_[k], word);
+    }
+  }
+  std::uint64_t lanes_[4] = {kPrime1 + kPrime2, kPrime2, 0, 0 - kPrime1};
+  std::uint8_t block_[kBlock] = {};
+  std::size_t pending_ = 0;
+  std::uint64_t total_ = 0;
+};
+
 /// Appends values to a buffer. With a file, the buffer is written out whenever it
 /// holds kFlushBytes, and the payload's checksum is taken on the way, so a file
 /// never needs a buffer of its whole size.
@@ -57,7 +115,7 @@ class Writer {
   /// Checksums and writes what the buffer holds (file only); false on a write error.
   bool flush() {
     const std::size_t skip = written_ < kHeaderSize ? kHeaderSize - written_ : 0;
-    if (out_.size() > skip) checksum_ = fnv1a64(out_.data() + skip, out_.size() - skip, checksum_);
+    if (out_.size() > skip) hash_.update(out_.data() + skip, out_.size() - skip);
     ok_ = ok_ && std::fwrite(out_.data(), 1, out_.size(), file_) == out_.size();
     written_ += out_.size();
     out_.clear();
@@ -65,8 +123,8 @@ class Writer {
   }
   /// The payload's checksum; with a file, after the last flush().
   std::uint64_t checksum() const {
-    if (file_ != nullptr) return checksum_;
-    return fnv1a64(out_.data() + kHeaderSize, out_.size() - kHeaderSize);
+    if (file_ != nullptr) return hash_.value();
+    return payloadChecksum(out_.data() + kHeaderSize, out_.size() - kHeaderSize);
   }
 
  private:
@@ -74,7 +132,7 @@ class Writer {
   std::vector<std::uint8_t>& out_;
   std::FILE* file_;
   std::size_t written_ = 0;  ///< bytes already in the file
-  std::uint64_t checksum_ = kFnvOffset;
+  PayloadHash hash_;
   bool ok_ = true;
 };
 
@@ -96,6 +154,12 @@ class Reader {
     n = static_cast<std::size_t>(raw);
     return true;
   }
+  /// The next `n` bytes, which a getCount() of them has shown to be there.
+  const std::uint8_t* take(std::size_t n) {
+    const std::uint8_t* p = data_ + at_;
+    at_ += n;
+    return p;
+  }
   bool done() const { return ok_ && at_ == size_; }
 
  private:
@@ -106,38 +170,42 @@ class Reader {
 };
 
 /// Reads one polytope; vertex `original` must index the mesh's vertices and face
-/// sources its triangles (or be -1).
-bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
+/// sources its triangles (or be -1). Records are read straight from the bytes once
+/// their count is known to fit.
+bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p, FinalizeScratch& scratch) {
   std::size_t nv = 0, nf = 0;
   if (!r.getCount(kVertexBytes, nv) || nv == 0) return false;
   p.vertices.resize(nv);
   p.original.resize(nv);
   const auto vertex_limit = static_cast<std::int64_t>(mesh.vertices.size());
-  for (std::size_t i = 0; i < nv; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      double x = 0.0;
-      if (!r.get(x) || !std::isfinite(x)) return false;
-      p.vertices[i][k] = x;
-    }
+  const std::uint8_t* at = r.take(nv * kVertexBytes);
+  for (std::size_t i = 0; i < nv; ++i, at += kVertexBytes) {
+    double xyz[3];
     std::int32_t original = -1;
-    if (!r.get(original) || original < 0 || original >= vertex_limit) return false;
+    std::memcpy(xyz, at, sizeof(xyz));
+    std::memcpy(&original, at + sizeof(xyz), sizeof(original));
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]) ||
+        original < 0 || original >= vertex_limit)
+      return false;
+    p.vertices[i] = Vec3(xyz[0], xyz[1], xyz[2]);
     p.original[i] = original;
   }
   if (!r.getCount(kFaceBytes, nf)) return false;
   p.faces.resize(nf);
   p.face_source.resize(nf);
   const auto triangle_limit = static_cast<std::int64_t>(mesh.triangles.size());
-  for (std::size_t f = 0; f < nf; ++f) {
+  at = r.take(nf * kFaceBytes);
+  for (std::size_t f = 0; f < nf; ++f, at += kFaceBytes) {
+    std::int32_t record[4];
+    std::memcpy(record, at, sizeof(record));
     for (int k = 0; k < 3; ++k) {
-      std::int32_t v = -1;
-      if (!r.get(v) || v < 0 || static_cast<std::size_t>(v) >= nv) return false;
-      p.faces[f][k] = v;
+      if (record[k] < 0 || static_cast<std::size_t>(record[k]) >= nv) return false;
+      p.faces[f][k] = record[k];
     }
-    std::int32_t source = -1;
-    if (!r.get(source) || source < -1 || source >= triangle_limit) return false;
-    p.face_source[f] = source;
+    if (record[3] < -1 || record[3] >= triangle_limit) return false;
+    p.face_source[f] = record[3];
   }
-  p.finalize();
+  p.finalize(scratch);
   return true;
 }
 
@@ -146,8 +214,9 @@ bool getPolytopes(Reader& r, const MeshData& mesh, std::vector<ConvexPolytope>& 
   // Every polytope takes at least its two counts and one vertex.
   if (!r.getCount(2 * sizeof(std::uint64_t) + kVertexBytes, n)) return false;
   out.resize(n);
+  FinalizeScratch scratch;
   for (ConvexPolytope& p : out) {
-    if (!getPolytope(r, mesh, p)) return false;
+    if (!getPolytope(r, mesh, p, scratch)) return false;
   }
   return true;
 }
@@ -297,6 +366,12 @@ std::uint64_t fnv1a64(const void* bytes, std::size_t size, std::uint64_t hash) {
   return hash;
 }
 
+std::uint64_t payloadChecksum(const void* bytes, std::size_t size) {
+  PayloadHash hash;
+  hash.update(static_cast<const std::uint8_t*>(bytes), size);
+  return hash.value();
+}
+
 std::uint64_t pieceInputHash(ModelKind kind, const MeshData& mesh) {
   const std::uint64_t header[3] = {static_cast<std::uint64_t>(kind), mesh.vertices.size(),
                                    mesh.triangles.size()};
@@ -382,7 +457,7 @@ bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t inpu
   Header h;
   if (!readHeader(head, h) || !headerMatches(h, input_hash, data.kind, bytes.size())) return false;
   const std::uint8_t* payload = bytes.data() + kHeaderSize;
-  if (fnv1a64(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
+  if (payloadChecksum(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
   // Past the checksum the file is intact: what follows finds a file that was not
   // written by this library for this input (forged, or written by a bug).
   const char* problem = decodePayload(bytes, data);

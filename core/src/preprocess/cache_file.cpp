@@ -9,10 +9,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <thread>
 #include <type_traits>
 #include <utility>
 
@@ -171,8 +173,8 @@ class Reader {
 
 /// Reads one polytope; vertex `original` must index the mesh's vertices and face
 /// sources its triangles (or be -1). Records are read straight from the bytes once
-/// their count is known to fit.
-bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p, FinalizeScratch& scratch) {
+/// their count is known to fit. Not finalized: finalizeAll does that for all.
+bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
   std::size_t nv = 0, nf = 0;
   if (!r.getCount(kVertexBytes, nv) || nv == 0) return false;
   p.vertices.resize(nv);
@@ -205,7 +207,6 @@ bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p, FinalizeScr
     if (record[3] < -1 || record[3] >= triangle_limit) return false;
     p.face_source[f] = record[3];
   }
-  p.finalize(scratch);
   return true;
 }
 
@@ -214,11 +215,32 @@ bool getPolytopes(Reader& r, const MeshData& mesh, std::vector<ConvexPolytope>& 
   // Every polytope takes at least its two counts and one vertex.
   if (!r.getCount(2 * sizeof(std::uint64_t) + kVertexBytes, n)) return false;
   out.resize(n);
-  FinalizeScratch scratch;
   for (ConvexPolytope& p : out) {
-    if (!getPolytope(r, mesh, p, scratch)) return false;
+    if (!getPolytope(r, mesh, p)) return false;
   }
   return true;
+}
+
+/// finalize() on every polytope of `a` then `b`, on up to `threads` threads taking
+/// blocks of polytopes in turn; each polytope's result depends on it alone.
+void finalizeAll(std::vector<ConvexPolytope>& a, std::vector<ConvexPolytope>& b, int threads) {
+  constexpr std::size_t kBlock = 64;
+  const std::size_t total = a.size() + b.size();
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    FinalizeScratch scratch;
+    for (std::size_t from = next.fetch_add(kBlock); from < total; from = next.fetch_add(kBlock)) {
+      for (std::size_t i = from; i < std::min(total, from + kBlock); ++i)
+        (i < a.size() ? a[i] : b[i - a.size()]).finalize(scratch);
+    }
+  };
+  const std::size_t helpers =
+      std::min(static_cast<std::size_t>(std::max(threads, 1) - 1), total / kBlock);
+  std::vector<std::thread> pool;
+  pool.reserve(helpers);
+  for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
 }
 
 struct Header {
@@ -327,7 +349,7 @@ const char* contentProblem(const MeshData& mesh, const std::vector<ConvexPolytop
 
 /// Decodes the payload of a file whose header and checksum passed into `data`; null
 /// on success, else why it is refused (`data` unchanged).
-const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& data) {
+const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& data, int threads) {
   const char* const malformed = "its payload is malformed";
   Reader r(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize);
   std::uint8_t convex = 0;
@@ -347,6 +369,7 @@ const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& dat
     n.polytope = polytope;
   }
   if (!getPolytopes(r, data.mesh, bvh.hulls) || !r.done()) return malformed;
+  finalizeAll(patches, bvh.hulls, threads);
   if (!finishHullBvh(patches, bvh)) return "its hierarchy is not a tree over its leaves";
   if (const char* problem = contentProblem(data.mesh, patches, bvh)) return problem;
   data.patches = std::move(patches);
@@ -452,7 +475,7 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 }
 
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
-                      PieceData& data, std::string* rejected) {
+                      PieceData& data, std::string* rejected, int threads) {
   Reader head(bytes.data(), bytes.size());
   Header h;
   if (!readHeader(head, h) || !headerMatches(h, input_hash, data.kind, bytes.size())) return false;
@@ -460,7 +483,7 @@ bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t inpu
   if (payloadChecksum(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
   // Past the checksum the file is intact: what follows finds a file that was not
   // written by this library for this input (forged, or written by a bug).
-  const char* problem = decodePayload(bytes, data);
+  const char* problem = decodePayload(bytes, data, threads);
   if (problem == nullptr) return true;
   if (rejected != nullptr) *rejected = problem;
   return false;
@@ -489,7 +512,7 @@ bool existsAsNonRegular(const std::string& path) {
 }  // namespace
 
 bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
-                    std::string* rejected) {
+                    std::string* rejected, int threads) {
   std::FILE* file = openRegularFile(path);
   if (file == nullptr) return false;
   // The header first: a foreign or stale file of any size is rejected unread.
@@ -508,7 +531,7 @@ bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData
          bytes.size() - kHeaderSize;
   }
   std::fclose(file);
-  return ok && decodePieceCache(bytes, input_hash, data, rejected);
+  return ok && decodePieceCache(bytes, input_hash, data, rejected, threads);
 }
 
 Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data) {

@@ -43,13 +43,14 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 /// faces are the input triangles and cover them all, the hierarchy is a tree over
 /// the leaves and every inner hull's box contains its children's. A file failing
 /// those (forged, or written by a bug) sets `*rejected` (if given) to the reason;
-/// a damaged, stale or foreign file leaves it unchanged.
+/// a damaged, stale or foreign file leaves it unchanged. The polytopes' derived
+/// arrays (finalize) are computed on up to `threads` threads; same result for any count.
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
-                      PieceData& data, std::string* rejected = nullptr);
+                      PieceData& data, std::string* rejected = nullptr, int threads = 1);
 
 /// decodePieceCache on the file at `path`; false when it is missing or unreadable.
 bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
-                    std::string* rejected = nullptr);
+                    std::string* rejected = nullptr, int threads = 1);
 
 /// Writes the file, a chunk at a time (no buffer of its size), through a temporary
 /// file renamed over `path`, so readers never see a partial file. File status when

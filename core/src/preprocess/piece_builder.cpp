@@ -180,7 +180,8 @@ Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& o
   data->bounds = referencedBounds(data->mesh);
   Status file_status;
   std::string rejected;
-  if (use_cache && detail::loadPieceCache(options.cache_file, key, *data, &rejected)) {
+  if (use_cache &&
+      detail::loadPieceCache(options.cache_file, key, *data, &rejected, threadCount(options))) {
     data->stats.from_cache = true;
   } else {
     if (cancelled(options)) return cancelledStatus();

@@ -47,7 +47,7 @@ constexpr std::size_t kHashOffset = 24;
 /// The fields a cache file stores, to compare as one.
 auto storedFields(const ConvexPolytope& p) {
   return std::tie(p.vertices, p.original, p.faces, p.face_source, p.adjacency_start, p.adjacency,
-                  p.center, p.radius);
+                  p.vertex_face_start, p.vertex_faces, p.center, p.radius);
 }
 auto storedFields(const HullBvhNode& n) {
   return std::tie(n.left, n.right, n.polytope, n.center, n.radius);
@@ -235,6 +235,26 @@ TEST(CacheFileMesh, FileWrittenInChunksEqualsTheEncodedBytes) {
   const Result<PiecePtr> loaded = buildPiece(ModelKind::TriangleSoup, soup, options);
   ASSERT_TRUE(loaded.ok());
   EXPECT_TRUE(loaded.value()->stats().from_cache);
+}
+
+// Decoding derives every polytope's arrays on the threads it is given: one and two
+// threads give the build's piece exactly (closed torus: patches and inner hulls).
+TEST(CacheFileMesh, DecodedOnOneAndTwoThreadsEqualsTheBuild) {
+  const MeshData torus = test::torusMesh(1.0, 0.3, 80, 40);
+  const Result<PiecePtr> built = buildPiece(ModelKind::ClosedPolyhedron, torus);
+  ASSERT_TRUE(built.ok()) << built.status().message();
+  const PieceData& expected = built.value()->internals();
+  ASSERT_GT(expected.patches.size() + expected.hierarchy.hulls.size(), 128u);
+  const std::uint64_t key = pieceInputHash(ModelKind::ClosedPolyhedron, torus);
+  const std::vector<std::uint8_t> bytes = encodePieceCache(key, expected);
+  for (const int threads : {1, 2}) {
+    PieceData loaded;
+    loaded.kind = ModelKind::ClosedPolyhedron;
+    loaded.mesh = expected.mesh;
+    loaded.stats.flipped = expected.stats.flipped;
+    ASSERT_TRUE(decodePieceCache(bytes, key, loaded, nullptr, threads)) << threads;
+    ASSERT_NO_FATAL_FAILURE(expectSamePiece(expected, loaded)) << threads;
+  }
 }
 
 TEST_F(CacheFile, RoundTripLoadsTheSamePreprocessing) {

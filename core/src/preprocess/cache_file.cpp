@@ -87,19 +87,22 @@ class PayloadHash {
   std::uint64_t total_ = 0;
 };
 
-/// Appends values to a buffer. With a file, the buffer is written out whenever it
-/// holds kFlushBytes, and the payload's checksum is taken on the way, so a file
-/// never needs a buffer of its whole size.
+/// Appends values to a buffer at a write position (no resize per value). With a
+/// file, the buffer is written out whenever it holds kFlushBytes, and the payload's
+/// checksum is taken on the way, so a file never needs a buffer of its whole size;
+/// in memory the buffer ends at the last value written (finish()).
 class Writer {
  public:
-  Writer(std::vector<std::uint8_t>& out, std::FILE* file) : out_(out), file_(file) {}
+  Writer(std::vector<std::uint8_t>& out, std::FILE* file) : out_(out), file_(file) {
+    if (file_ != nullptr) out_.resize(kFlushBytes + 64);  // a value never passes it
+  }
   template <class T>
   void put(T value) {
     static_assert(std::is_trivially_copyable_v<T>);
-    const std::size_t at = out_.size();
-    out_.resize(at + sizeof(T));
-    std::memcpy(out_.data() + at, &value, sizeof(T));
-    if (file_ != nullptr && out_.size() >= kFlushBytes) flush();
+    if (at_ + sizeof(T) > out_.size()) out_.resize(std::max(2 * out_.size(), at_ + sizeof(T)));
+    std::memcpy(out_.data() + at_, &value, sizeof(T));
+    at_ += sizeof(T);
+    if (file_ != nullptr && at_ >= kFlushBytes) flush();
   }
   void putCount(std::size_t n) { put(static_cast<std::uint64_t>(n)); }
   void putPolytope(const ConvexPolytope& p) {
@@ -117,22 +120,25 @@ class Writer {
   /// Checksums and writes what the buffer holds (file only); false on a write error.
   bool flush() {
     const std::size_t skip = written_ < kHeaderSize ? kHeaderSize - written_ : 0;
-    if (out_.size() > skip) hash_.update(out_.data() + skip, out_.size() - skip);
-    ok_ = ok_ && std::fwrite(out_.data(), 1, out_.size(), file_) == out_.size();
-    written_ += out_.size();
-    out_.clear();
+    if (at_ > skip) hash_.update(out_.data() + skip, at_ - skip);
+    ok_ = ok_ && std::fwrite(out_.data(), 1, at_, file_) == at_;
+    written_ += at_;
+    at_ = 0;
     return ok_;
   }
   /// The payload's checksum; with a file, after the last flush().
   std::uint64_t checksum() const {
     if (file_ != nullptr) return hash_.value();
-    return payloadChecksum(out_.data() + kHeaderSize, out_.size() - kHeaderSize);
+    return payloadChecksum(out_.data() + kHeaderSize, at_ - kHeaderSize);
   }
+  /// In memory: the buffer cut to the bytes written.
+  void finish() { out_.resize(at_); }
 
  private:
   static constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
   std::vector<std::uint8_t>& out_;
   std::FILE* file_;
+  std::size_t at_ = 0;       ///< bytes in the buffer
   std::size_t written_ = 0;  ///< bytes already in the file
   PayloadHash hash_;
   bool ok_ = true;
@@ -466,9 +472,10 @@ bool writePieceCache(std::FILE* file, std::uint64_t input_hash, const PieceData&
 
 std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const PieceData& data) {
   std::vector<std::uint8_t> bytes;
-  bytes.reserve(kHeaderSize + payloadBytes(data));
+  bytes.resize(kHeaderSize + payloadBytes(data));
   Writer w(bytes, nullptr);
   encodeInto(w, input_hash, data);
+  w.finish();
   const std::uint64_t checksum = w.checksum();
   std::memcpy(bytes.data() + kHeaderSize - sizeof(checksum), &checksum, sizeof(checksum));
   return bytes;

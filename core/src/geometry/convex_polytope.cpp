@@ -26,11 +26,31 @@ void ConvexPolytope::finalize() {
 }
 
 void ConvexPolytope::finalize(FinalizeScratch& scratch) {
+  // A bare point set (an inner node of a hierarchy) has no faces to walk: its
+  // arrays stay empty, which every reader takes as "scan the vertices".
+  if (faces.empty()) {
+    adjacency_start.clear();
+    adjacency.clear();
+    vertex_face_start.clear();
+    vertex_faces.clear();
+  } else {
+    buildAdjacency(scratch);
+  }
   const int n = static_cast<int>(vertices.size());
+  bounds = Aabb();
+  for (const Vec3& p : vertices) bounds.extend(p);
+  center = n > 0 ? Vec3(0.5 * (bounds.min + bounds.max)) : Vec3::Zero();
+  radius = 0.0;
+  for (const Vec3& p : vertices) radius = std::max(radius, (p - center).squaredNorm());
+  radius = std::sqrt(radius);
+}
+
+void ConvexPolytope::buildAdjacency(FinalizeScratch& scratch) {
   // Faces around each vertex (CSR), then each vertex's neighbours read off its
   // faces, a mark per vertex keeping each once: no sort of every face corner, and
   // a caller finalizing many polytopes (a cache load: tens of thousands) passes
   // the same scratch to each.
+  const int n = static_cast<int>(vertices.size());
   vertex_face_start.assign(n + 1, 0);
   for (const Tri& f : faces)
     for (int k = 0; k < 3; ++k) ++vertex_face_start[f[k] + 1];
@@ -59,12 +79,6 @@ void ConvexPolytope::finalize(FinalizeScratch& scratch) {
     adjacency_start[v + 1] = static_cast<int>(entries.size());
   }
   adjacency.assign(entries.begin(), entries.end());
-  bounds = Aabb();
-  for (const Vec3& p : vertices) bounds.extend(p);
-  center = n > 0 ? Vec3(0.5 * (bounds.min + bounds.max)) : Vec3::Zero();
-  radius = 0.0;
-  for (const Vec3& p : vertices) radius = std::max(radius, (p - center).squaredNorm());
-  radius = std::sqrt(radius);
 }
 
 int ConvexPolytope::support(const Vec3& direction, int& hint) const {

@@ -33,7 +33,8 @@ struct ConvexPolytope {
   Vec3 center = Vec3::Zero();  ///< centre of the bounding sphere
   double radius = 0.0;         ///< bounding sphere radius about `center`
 
-  /// Builds adjacencies, bounds and bounding sphere from vertices and faces.
+  /// Builds adjacencies, bounds and bounding sphere from vertices and faces. Without
+  /// faces (a bare point set) the adjacency and vertex-face arrays are left empty.
   void finalize();
   /// The same with the caller's working arrays: no allocation beyond the results.
   void finalize(FinalizeScratch& scratch);
@@ -41,6 +42,9 @@ struct ConvexPolytope {
   /// Index of a vertex maximising dot(direction, vertex). `hint` (in/out) is the
   /// vertex to start hill climbing from; any value in range is valid.
   int support(const Vec3& direction, int& hint) const;
+
+ private:
+  void buildAdjacency(FinalizeScratch& scratch);
 };
 
 }  // namespace sc::detail

@@ -17,6 +17,10 @@
 // orbit and the carried tracker is reset() first (the documented teleport), so that
 // its result must equal the fresh one's there, depth included. --teleport-distance=X
 // sets PairSettings::teleport_distance (default +inf: every jump is a path).
+// --callgrind-updates: under `valgrind --tool=callgrind --collect-atstart=no`, the PD
+// case's first run collects only the carried tracker's updates and dumps the count
+// after each one (one file per update: bench/callgrind_updates.py reads them), so
+// which updates are slow is known independently of the machine's load.
 #include <time.h>
 
 #include <algorithm>
@@ -28,6 +32,11 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define SC_HAVE_CALLGRIND 1
+#endif
 
 #include "harness.h"
 #include "meshes.h"
@@ -50,6 +59,7 @@ constexpr double kAcceptanceJump = 0.05;  // the case the target is asserted on
 constexpr int kJumpEvery = 200;
 constexpr double kStepAngle = 2e-4;  // radians per step of the orbit and of the body
 int g_runs = 3;  // --runs=N: more runs, less of the machine's load in each step's least time
+bool g_callgrind_updates = false;  // --callgrind-updates: one callgrind dump per PD update
 constexpr double kRatio = 1.2, kSlackUs = 20.0;
 constexpr double kPdP99Us = 200.0;  // PD update target (issue 19.3)
 
@@ -260,6 +270,23 @@ bool report(const std::string& label, const Outcome& o, std::FILE* csv) {
   return (over_cpu == 0 || g_jump != kAcceptanceJump) && o.mismatches == 0;
 }
 
+/// One PD update of the first run, counted alone by callgrind when asked to.
+Sample countedUpdate(const Pair& pair, sc::PairTracker& tracker, const sc::Rigid& pose,
+                     sc::DirectedResult& r, bool counted) {
+#ifdef SC_HAVE_CALLGRIND
+  if (counted) CALLGRIND_TOGGLE_COLLECT;
+  const Sample s = timed(pair, tracker, pose, r, false);
+  if (counted) {
+    CALLGRIND_TOGGLE_COLLECT;
+    CALLGRIND_DUMP_STATS;
+  }
+  return s;
+#else
+  (void)counted;
+  return timed(pair, tracker, pose, r, false);
+#endif
+}
+
 /// The PD update case: the carried tracker alone along the depth path. Prints its
 /// figures; true when the p99 meets kPdP99Us in thread CPU time.
 bool pdUpdate(const Pair& pair, const std::vector<sc::Rigid>& path, std::FILE* csv) {
@@ -268,7 +295,7 @@ bool pdUpdate(const Pair& pair, const std::vector<sc::Rigid>& path, std::FILE* c
     sc::PairTracker carried;
     for (std::size_t k = 0; k < path.size(); ++k) {
       sc::DirectedResult result;
-      const Sample s = timed(pair, carried, path[k], result, false);
+      const Sample s = countedUpdate(pair, carried, path[k], result, g_callgrind_updates && r == 0);
       best[k] = {std::min(best[k].wall_us, s.wall_us), std::min(best[k].cpu_us, s.cpu_us)};
     }
   }
@@ -309,6 +336,7 @@ int main(int argc, char** argv) {
     if (std::strncmp(argv[i], "--seed=", 7) == 0)
       g_seed = static_cast<unsigned>(std::strtoul(argv[i] + 7, nullptr, 10));
     if (std::strncmp(argv[i], "--jumps=", 8) == 0) jumps = parseJumps(argv[i] + 8);
+    if (std::strcmp(argv[i], "--callgrind-updates") == 0) g_callgrind_updates = true;
   }
   if (csv)
     std::fprintf(csv, "case,jump,step,warm_wall_us,warm_cpu_us,fresh_wall_us,fresh_cpu_us\n");

@@ -92,6 +92,44 @@ TEST(WarmJump, CarriedTrackerEqualsAFreshOneAfterSidewaysJumps) {
   EXPECT_GE(compared, 12);
 }
 
+/// Motions whose distances at both ends exceed half their length (plus the skin)
+/// cannot meet the opponent anywhere on the way: the carried tracker answers from the
+/// goal's distance without a sweep, and that answer is a fresh tracker's. The turn
+/// with each motion (INPUT and NONE modes) is covered by the start's bound.
+TEST(WarmJump, AMotionItsEndsCertifyFreeEqualsAFreshTracker) {
+  Elephants e;
+  ASSERT_NO_FATAL_FAILURE(twoElephants(e));
+  const double size = e.size();
+  Rng rng(7);
+  int compared = 0;
+  for (const RotationMode mode : {RotationMode::Input, RotationMode::None}) {
+    Elephants carried = e;
+    carried.settings.rotation_mode = mode;
+    for (int path = 0; path < 3; ++path) {
+      const Vec3 u0 = randomDirection(rng);
+      const Vec3 axis = u0.unitOrthogonal();
+      const Vec3 spin = randomDirection(rng);
+      PairTracker warm;
+      for (int step = 0; step < 8; ++step) {
+        // 5 % of the size away, each step 3 % of it along the opponent and a turn.
+        const Vec3 u = Eigen::AngleAxisd(0.03 * step, axis) * u0;
+        const Mat3 q = Eigen::AngleAxisd(0.02 * step, spin).toRotationMatrix();
+        const Rigid pose{q, e.offsetAtGap(q, u, 0.05 * size) * u};
+        PairTracker cold;
+        const DirectedResult expected = carried.update(cold, pose);
+        const DirectedResult r = carried.update(warm, pose);
+        ASSERT_EQ(r.code, ErrorCode::Ok);
+        ASSERT_EQ(expected.code, ErrorCode::Ok);
+        EXPECT_NEAR(r.distance, expected.distance, 1e-12 * size) << "path " << path;
+        EXPECT_LE((r.point_on_target - expected.point_on_target).norm(), 1e-9 * size);
+        EXPECT_EQ(r.status, DirectionStatus::Separated);
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 48);
+}
+
 /// A carried tracker whose jumps exceed PairSettings::teleport_distance answers what a
 /// fresh one answers at every jump: the distance, and inside the opponent the depth
 /// a fresh tracker resolves (resolve_initial_intersection), not the path's.

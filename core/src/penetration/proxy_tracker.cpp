@@ -100,6 +100,27 @@ void ProxyTracker::reportApart(GroupPairQuery& query, const Rigid& goal,
   out.distance = out.contact.gap;
 }
 
+bool ProxyTracker::certifiedFree(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                                 const PairSettings& settings, ProxyOutcome& out, bool& measured) {
+  const RotationMode mode = settings.rotation_mode;
+  if (mode != RotationMode::Input && mode != RotationMode::None) return false;
+  // The slide turns the proxy to the goal's rotation in place, then translates its
+  // centre: the gap there is bounded by the last distance less that turn.
+  const Vec3 from = proxy_ * center;
+  const double start_gap = query.distanceLowerBound(poseAt(goal.rotation, center, from));
+  // Within the tolerance the slide gathers contacts and may not head straight.
+  if (!(start_gap > settings.tolerance)) return false;
+  reportApart(query, goal, settings, out);
+  measured = true;
+  if (out.code != ErrorCode::Ok && out.code != ErrorCode::NoResult) return false;
+  const double end_gap = out.code == ErrorCode::Ok ? out.distance : settings.max_distance;
+  // Every point moves |t| along the translation t, and the gap is 1-Lipschitz in it:
+  // at fraction s it is at least max(start - s|t|, end - (1 - s)|t|) >=
+  // (start + end - |t|) / 2, which must stay above the skin the sweep stops within.
+  const double length = (goal * center - from).norm();
+  return start_gap + end_gap - length > 2.0 * skinOf(settings);
+}
+
 void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                           const PairSettings& settings, ProxyOutcome& out) {
   out = ProxyOutcome();
@@ -116,13 +137,20 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   }
   previous_proxy_ = proxy_;
   touch_normal_.setZero();
+  bool measured = false;
+  if (!penetrating_ && certifiedFree(query, goal, center, settings, out, measured)) {
+    proxy_ = goal;  // where the slide's one unobstructed sweep would have put it
+    ran_out_ = false;
+    out.iterations = 1;
+    return;
+  }
   // A proxy stopped short of a free goal still reports a depth: the goal was reached
   // through the opponent (a thin wall), or the proxy lags and catches up later.
   const bool reached = follow(query, goal, center, settings, out);
   if (reached || !reportPenetration(query, goal, center, settings, out)) {
     penetrating_ = false;
     proxy_ = goal;
-    reportApart(query, goal, settings, out);
+    if (!measured) reportApart(query, goal, settings, out);
     // A goal that only touches has no normal of its own (its closest points
     // coincide): keep the one of the contact the proxy rested on.
     if (out.code == ErrorCode::Ok && out.distance <= 0.0 && !touch_normal_.isZero(0.0))

@@ -68,6 +68,12 @@ class ProxyTracker {
   };
   void reportApart(GroupPairQuery& query, const Rigid& goal, const PairSettings& settings,
                    ProxyOutcome& out);
+  /// A free proxy's motion to `goal` (INPUT, NONE) that provably meets nothing within
+  /// the skin: the distances at both ends exceed half its length by more than the
+  /// skin. Measures the goal into `out` first (`measured`), as a fresh tracker does;
+  /// true when that certifies the whole motion, so no sweep is needed.
+  bool certifiedFree(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                     const PairSettings& settings, ProxyOutcome& out, bool& measured);
   /// Steps 2-3 for this update's rotation mode; true when the proxy reached the goal.
   bool follow(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
               const PairSettings& settings, ProxyOutcome& out);

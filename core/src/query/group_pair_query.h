@@ -98,6 +98,10 @@ class GroupPairQuery {
 
   const TraversalCounters& counters() const { return counters_; }
 
+  /// Lower bound of the distance at `o_from_t` from the last distance() (its gap less
+  /// the motion since), or -inf when none is known (none yet, or the groups changed).
+  double distanceLowerBound(const Rigid& o_from_t) const { return knownLowerBound(o_from_t); }
+
   /// Largest displacement of a target point from pose `from` to pose `to`.
   double displacementBound(const Rigid& from, const Rigid& to) const {
     return near_.target().displacement(from, to);

@@ -89,6 +89,39 @@ TEST(ContactQp, WorkingSetReportsInfeasibleWedges) {
   }
 }
 
+TEST(ContactQp, WorkingSetVerdictOnThinStrips) {
+  // Two opposite rows leaving a strip of width delta among contact-like rows, one of
+  // which holds by a far larger margin than the rest (it sets the acceptance
+  // tolerance, 1e-9 x 1e3): strips down to 1e-12 wide have their point, strips of
+  // negative width beyond the tolerance none, on both solvers. (Within the tolerance
+  // the verdict rests on rounding and the two can differ either way.)
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int feasible = 0, infeasible = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int n = trial % 2 == 0 ? 3 : 6;
+    Problem p = contactLike(rng, n, 60, 40, 0.05, 0.01);
+    const double delta =
+        u(rng) < 0.5 ? std::pow(10.0, -4.0 - 8.0 * u(rng)) : -std::pow(10.0, -3.0 - 2.0 * u(rng));
+    VecX d = VecX::Zero(n);
+    d[1] = 1.0;
+    p.a.row(7) = d.transpose();
+    p.b[7] = 0.02;  // z_1 >= 0.02
+    p.a.row(31) = -d.transpose();
+    p.b[31] = -0.02 - delta;  // z_1 <= 0.02 + delta
+    p.b[50] = -1e3;           // holds by far
+    const QpResult ws = solveContactQp(p.goal, p.weights, p.a, p.b);
+    const QpResult all = solveContactQpAllRows(p.goal, p.weights, p.a, p.b);
+    ASSERT_EQ(ws.feasible, all.feasible) << "trial " << trial << ", delta " << delta;
+    (all.feasible ? feasible : infeasible)++;
+    if (all.feasible) {
+      EXPECT_LT((ws.z - all.z).norm(), 1e-7 * (1.0 + all.z.norm())) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(feasible, 150);
+  EXPECT_GT(infeasible, 150);
+}
+
 TEST(ContactQp, FeasibleGoalIsItsOwnAnswer) {
   std::mt19937 rng(3);
   Problem p = contactLike(rng, 6, 100, 60, 0.05, 0.01);

@@ -62,7 +62,8 @@ void nnls(const RowsRef& e, const RhsRef& f, int max_iterations, QpWork& w, Eige
   auto gradient = w.gradient.head(m), z = w.trial.head(m);
   u.setZero();
   w.passive.assign(static_cast<std::size_t>(m), 0);
-  SmallVec residual(e.rows());
+  if (w.residual.size() != e.rows()) w.residual.resize(e.rows());  // any size of E
+  VecX& residual = w.residual;
   for (int outer = 0; outer < max_iterations; ++outer) {
     residual.noalias() = f - e * u;
     gradient.noalias() = e.transpose() * residual;  // negative gradient

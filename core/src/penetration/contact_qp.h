@@ -29,6 +29,7 @@ struct QpResult {
 struct QpWork {
   MatX e;                   ///< the LDP's matrix, (n + 1) x rows
   VecX u, gradient, trial;  ///< per row
+  VecX residual;            ///< per row of the LDP's matrix
   std::vector<char> passive, in_set;
   std::vector<int> passive_cols;
   std::vector<int> set_rows;  ///< the working set, in the order added

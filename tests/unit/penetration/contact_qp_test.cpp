@@ -132,6 +132,35 @@ TEST(ContactQp, FeasibleGoalIsItsOwnAnswer) {
   EXPECT_EQ(r.lambda.cwiseAbs().maxCoeff(), 0.0);
 }
 
+TEST(ContactQp, NonNegativeLeastSquaresMeetsItsOptimalityConditions) {
+  // Any shape of E, also taller than the LDP's 7 rows: u >= 0, the gradient
+  // E^T (f - E u) zero where u > 0 and <= 0 where u = 0.
+  std::mt19937 rng(17);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (const auto& [rows, cols] :
+       {std::pair{4, 9}, std::pair{7, 30}, std::pair{12, 5}, std::pair{20, 20}}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      MatX e(rows, cols);
+      VecX f(rows);
+      for (int i = 0; i < rows; ++i) {
+        f[i] = g(rng);
+        for (int j = 0; j < cols; ++j) e(i, j) = g(rng);
+      }
+      const VecX u = nonNegativeLeastSquares(e, f);
+      const VecX gradient = e.transpose() * (f - e * u);
+      const double scale = 1e-9 * (1.0 + e.norm() * f.norm());
+      for (int j = 0; j < cols; ++j) {
+        EXPECT_GE(u[j], 0.0) << rows << "x" << cols << " trial " << trial;
+        if (u[j] > 0.0) {
+          EXPECT_NEAR(gradient[j], 0.0, scale) << rows << "x" << cols << " trial " << trial;
+        } else {
+          EXPECT_LT(gradient[j], scale) << rows << "x" << cols << " trial " << trial;
+        }
+      }
+    }
+  }
+}
+
 /// The problem with every length multiplied by s: translations, offsets and levers
 /// (the rotational columns of a twist row), rotation weights by s^2; angles are kept.
 Problem scaledProblem(const Problem& p, double s) {

@@ -18,31 +18,97 @@ namespace sc::detail {
 
 namespace {
 
-/// Relative violation of a row beyond which a solution is rejected (rounding is ~1e-16).
-constexpr double kRowTolerance = 1e-9;
 /// Up to this many rows the QP is solved on all rows at once; beyond, on a working set
 /// of the most violated rows, grown by at least half this many per round.
 constexpr int kWorkingSetRows = 24;
+/// The LDP's E has at most 7 rows, so its passive columns (linearly independent) are
+/// few: their least squares is done in fixed-capacity arrays, off the heap.
+constexpr int kMaxPassive = 16;
+using PassiveMat =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 7, kMaxPassive>;
+using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 7, 1>;
+using PassiveVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxPassive, 1>;
 
 /// Least squares on the passive columns only; the others are zero.
-VecX solvePassive(const MatX& e, const VecX& f, const std::vector<bool>& passive) {
-  const int m = static_cast<int>(e.cols());
-  std::vector<int> cols;
-  for (int j = 0; j < m; ++j)
-    if (passive[j]) cols.push_back(j);
-  VecX z = VecX::Zero(m);
-  if (cols.empty()) return z;
-  MatX sub(e.rows(), static_cast<Eigen::Index>(cols.size()));
-  for (size_t k = 0; k < cols.size(); ++k) sub.col(static_cast<Eigen::Index>(k)) = e.col(cols[k]);
+void solvePassive(const RowsRef& e, const RhsRef& f, const std::vector<char>& passive,
+                  std::vector<int>& cols, Eigen::Ref<VecX> z) {
+  cols.clear();
+  for (int j = 0; j < static_cast<int>(z.size()); ++j)
+    if (passive[static_cast<std::size_t>(j)]) cols.push_back(j);
+  z.setZero();
+  if (cols.empty()) return;
+  const auto count = static_cast<Eigen::Index>(cols.size());
+  if (e.rows() <= 7 && count <= kMaxPassive) {
+    PassiveMat sub(e.rows(), count);
+    for (Eigen::Index k = 0; k < count; ++k) sub.col(k) = e.col(cols[static_cast<std::size_t>(k)]);
+    const SmallVec rhs = f;
+    const PassiveVec s = sub.colPivHouseholderQr().solve(rhs);
+    for (Eigen::Index k = 0; k < count; ++k) z[cols[static_cast<std::size_t>(k)]] = s[k];
+    return;
+  }
+  MatX sub(e.rows(), count);  // a larger problem than the contact QP's: general arrays
+  for (Eigen::Index k = 0; k < count; ++k) sub.col(k) = e.col(cols[static_cast<std::size_t>(k)]);
   const VecX s = sub.colPivHouseholderQr().solve(f);
-  for (size_t k = 0; k < cols.size(); ++k) z[cols[k]] = s[static_cast<Eigen::Index>(k)];
-  return z;
+  for (Eigen::Index k = 0; k < count; ++k) z[cols[static_cast<std::size_t>(k)]] = s[k];
+}
+
+/// Lawson-Hanson NNLS into u (size e.cols()), with work arrays from `w`.
+void nnls(const RowsRef& e, const RhsRef& f, int max_iterations, QpWork& w, Eigen::Ref<VecX> u) {
+  const Eigen::Index m = e.cols();
+  if (max_iterations <= 0) max_iterations = 3 * static_cast<int>(m) + 10;
+  const double tol = 1e-12 * std::max(1.0, e.norm());
+  if (w.gradient.size() < m) w.gradient.resize(2 * m);
+  if (w.trial.size() < m) w.trial.resize(2 * m);
+  auto gradient = w.gradient.head(m), z = w.trial.head(m);
+  u.setZero();
+  w.passive.assign(static_cast<std::size_t>(m), 0);
+  if (w.residual.size() != e.rows()) w.residual.resize(e.rows());  // any size of E
+  VecX& residual = w.residual;
+  for (int outer = 0; outer < max_iterations; ++outer) {
+    residual.noalias() = f - e * u;
+    gradient.noalias() = e.transpose() * residual;  // negative gradient
+    Eigen::Index best = -1;
+    double best_w = tol;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      if (!w.passive[static_cast<std::size_t>(j)] && gradient[j] > best_w) {
+        best_w = gradient[j];
+        best = j;
+      }
+    }
+    if (best < 0) break;  // KKT holds
+    w.passive[static_cast<std::size_t>(best)] = 1;
+    for (int inner = 0; inner < max_iterations; ++inner) {
+      solvePassive(e, f, w.passive, w.passive_cols, z);
+      bool positive = true;
+      for (const int j : w.passive_cols)
+        if (z[j] <= 0.0) positive = false;
+      if (positive) {
+        u = z;
+        break;
+      }
+      // Step from u towards z until the first passive variable hits zero.
+      double alpha = 1.0;
+      for (const int j : w.passive_cols) {
+        if (z[j] <= 0.0) {
+          const double denom = u[j] - z[j];
+          if (denom > 0.0) alpha = std::min(alpha, u[j] / denom);
+        }
+      }
+      u += alpha * (z - u);
+      for (const int j : w.passive_cols) {
+        if (u[j] <= tol) {
+          w.passive[static_cast<std::size_t>(j)] = 0;
+          u[j] = 0.0;
+        }
+      }
+    }
+  }
 }
 
 /// Magnitude a row's violation is compared with: the largest terms of the rows at z
 /// (|a_ij z_j| and |b_i|: lengths, also for a twist's angles times levers) and
 /// `length`, the largest violation at the goal. No absolute floor: models of any size.
-double rowScale(const MatX& a, const VecX& b, const VecX& z, double length) {
+double rowScale(const RowsRef& a, const RhsRef& b, const VecZ& z, double length) {
   double largest = 0.0;  // a loop: no temporary vector per call
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
     double terms = std::abs(b[i]);
@@ -52,162 +118,194 @@ double rowScale(const MatX& a, const VecX& b, const VecX& z, double length) {
   return length + largest;
 }
 
+/// The largest violation at the goal (0 when the goal keeps every row).
+double goalViolation(const VecZ& goal, const RowsRef& a, const RhsRef& b) {
+  double length = 0.0;
+  for (Eigen::Index i = 0; i < a.rows(); ++i) length = std::max(length, b[i] - a.row(i).dot(goal));
+  return length;
+}
+
+void setGoal(const VecZ& goal, Eigen::Index rows, QpWork& w) {
+  w.feasible = true;
+  w.z = goal;
+  w.lambda.assign(static_cast<std::size_t>(rows), 0.0);
+}
+
+QpResult resultOf(const QpWork& w) {
+  QpResult out;
+  out.feasible = w.feasible;
+  out.z = w.z;
+  out.lambda = Eigen::Map<const VecX>(w.lambda.data(), static_cast<Eigen::Index>(w.lambda.size()));
+  return out;
+}
+
+/// True when a row is violated at w.z beyond the acceptance tolerance.
+bool anyRowViolated(const RowsRef& a, const RhsRef& b, double length, const QpWork& w) {
+  const double threshold = kRowTolerance * rowScale(a, b, w.z, length);
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    if (a.row(i).dot(w.z) - b[i] < -threshold) return true;
+  return false;
+}
+
+/// The all-rows solve into w.
+void solveAllRows(const VecZ& goal, const VecZ& weights, const RowsRef& a, const RhsRef& b,
+                  QpWork& w) {
+  setGoal(goal, a.rows(), w);
+  const double length = goalViolation(goal, a, b);
+  if (a.rows() == 0 || length <= 0.0) return;  // the goal itself is feasible
+  // Nearly opposite rows (a wedge) leave r small but not zero: x = -r / r_(n+1) is
+  // then huge and violates the rows. Only a solution that keeps them is one.
+  if (!solveLdpStep(goal, weights, a, b, length, w) || anyRowViolated(a, b, length, w)) {
+    setGoal(goal, a.rows(), w);
+    w.feasible = false;
+  }
+}
+
 }  // namespace
 
-VecX nonNegativeLeastSquares(const MatX& e, const VecX& f, int max_iterations) {
-  const int m = static_cast<int>(e.cols());
-  if (max_iterations <= 0) max_iterations = 3 * m + 10;
-  const double tol = 1e-12 * std::max(1.0, e.norm());
-  VecX u = VecX::Zero(m);
-  std::vector<bool> passive(m, false);
-  for (int outer = 0; outer < max_iterations; ++outer) {
-    const VecX w = e.transpose() * (f - e * u);  // negative gradient
-    int best = -1;
-    double best_w = tol;
-    for (int j = 0; j < m; ++j) {
-      if (!passive[j] && w[j] > best_w) {
-        best_w = w[j];
-        best = j;
-      }
-    }
-    if (best < 0) break;  // KKT holds
-    passive[best] = true;
-    for (int inner = 0; inner < max_iterations; ++inner) {
-      const VecX z = solvePassive(e, f, passive);
-      bool positive = true;
-      for (int j = 0; j < m; ++j)
-        if (passive[j] && z[j] <= 0.0) positive = false;
-      if (positive) {
-        u = z;
-        break;
-      }
-      // Step from u towards z until the first passive variable hits zero.
-      double alpha = 1.0;
-      for (int j = 0; j < m; ++j) {
-        if (passive[j] && z[j] <= 0.0) {
-          const double denom = u[j] - z[j];
-          if (denom > 0.0) alpha = std::min(alpha, u[j] / denom);
-        }
-      }
-      u += alpha * (z - u);
-      for (int j = 0; j < m; ++j) {
-        if (passive[j] && u[j] <= tol) {
-          passive[j] = false;
-          u[j] = 0.0;
-        }
-      }
-    }
+bool solveLdpStep(const VecZ& goal, const VecZ& weights, const RowsRef& a, const RhsRef& b,
+                  double length, QpWork& w) {
+  const Eigen::Index n = goal.size(), m = a.rows();
+  setGoal(goal, m, w);
+  if (m == 0) return true;
+  const VecZ inv_sqrt_w = weights.cwiseSqrt().cwiseInverse();
+  // The LDP in units of the largest violation at the goal: its thresholds (NNLS,
+  // infeasibility) are then the same at every model scale.
+  if (w.e.rows() != n + 1 || w.e.cols() < m) w.e.resize(n + 1, std::max<Eigen::Index>(2 * m, 32));
+  auto e = w.e.leftCols(m);
+  bool goal_keeps_rows = true;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const double h = b[i] - a.row(i).dot(goal);
+    goal_keeps_rows = goal_keeps_rows && h <= 0.0;
+    e.col(i).head(n) = a.row(i).transpose().cwiseProduct(inv_sqrt_w);
+    e(n, i) = h / length;
   }
+  if (goal_keeps_rows) return true;
+  SmallVec f = SmallVec::Zero(n + 1);
+  f[n] = 1.0;
+  if (w.u.size() < m) w.u.resize(2 * m);
+  auto u = w.u.head(m);
+  nnls(e, f, 0, w, u);
+  const SmallVec r = e * u - f;
+  if (r.norm() < 1e-12 || std::abs(r[n]) < 1e-300) return false;  // infeasible
+  const VecZ x = -(length / r[n]) * r.head(n);
+  w.z = goal + inv_sqrt_w.cwiseProduct(x);
+  if (!allFinite(w.z)) {
+    w.z = goal;
+    return false;
+  }
+  // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows and
+  // to model units (x = G^T lambda, and x is `length` times the scaled solution).
+  const double to_lambda = length / std::abs(r[n]);
+  for (Eigen::Index i = 0; i < m; ++i) w.lambda[static_cast<std::size_t>(i)] = to_lambda * u[i];
+  return true;
+}
+
+VecX nonNegativeLeastSquares(const MatX& e, const VecX& f, int max_iterations) {
+  QpWork w;
+  VecX u(e.cols());
+  nnls(e, f, max_iterations, w, u);
   return u;
 }
 
 QpResult solveContactQpAllRows(const VecX& goal, const VecX& weights, const MatX& a,
                                const VecX& b) {
-  const int n = static_cast<int>(goal.size());
-  const int m = static_cast<int>(a.rows());
-  QpResult out;
-  out.z = goal;
-  out.lambda = VecX::Zero(m);
-  if (m == 0) {
-    out.feasible = true;
-    return out;
-  }
-  const VecX inv_sqrt_w = weights.cwiseSqrt().cwiseInverse();
-  const MatX g = a * inv_sqrt_w.asDiagonal();
-  const VecX h = b - a * goal;
-  if ((h.array() <= 0.0).all()) {  // the goal itself is feasible
-    out.feasible = true;
-    return out;
-  }
-  // The LDP in units of the largest violation at the goal: its thresholds (NNLS,
-  // infeasibility) are then the same at every model scale.
-  const double length = h.maxCoeff();
-  MatX e(n + 1, m);
-  e.topRows(n) = g.transpose();
-  e.row(n) = h.transpose() / length;
-  VecX f = VecX::Zero(n + 1);
-  f[n] = 1.0;
-  const VecX u = nonNegativeLeastSquares(e, f);
-  const VecX r = e * u - f;
-  if (r.norm() < 1e-12 || std::abs(r[n]) < 1e-300) return out;  // infeasible
-  const VecX x = -(length / r[n]) * r.head(n);
-  const VecX z = goal + inv_sqrt_w.cwiseProduct(x);
-  // Nearly opposite rows (a wedge) leave r small but not zero: x = -r / r_(n+1) is
-  // then huge and violates the rows. Only a solution that keeps them is one.
-  if (!allFinite(z) || ((a * z - b).array() < -kRowTolerance * rowScale(a, b, z, length)).any())
-    return out;
-  out.z = z;
-  // Multipliers of the LDP: lambda = u / |r_(n+1)| scaled back to the QP's rows and
-  // to model units (x = G^T lambda, and x is `length` times the scaled solution).
-  out.lambda = (length / std::abs(r[n])) * u;
-  out.feasible = true;
-  return out;
+  QpWork w;
+  solveAllRows(goal, weights, a, b, w);
+  return resultOf(w);
 }
 
 namespace {
 
-/// Rows violated at `z` beyond the acceptance tolerance, with their violation scaled
-/// by the row's norm (most negative = most violated), skipping those in `in_set`.
-void violatedRows(const MatX& a, const VecX& b, const VecX& z, double length,
-                  const std::vector<bool>& in_set, std::vector<std::pair<double, int>>& out) {
-  out.clear();
-  const double scale = rowScale(a, b, z, length);
-  const VecX slack = a * z - b;
-  for (int i = 0; i < static_cast<int>(a.rows()); ++i)
-    if (!in_set[i] && slack[i] < -kRowTolerance * scale)
-      out.emplace_back(slack[i] / std::max(a.row(i).norm(), 1e-300), i);
+/// Rows violated at w.z beyond the acceptance tolerance, with their violation scaled
+/// by the row's norm (most negative = most violated), skipping those in the set;
+/// true when a row of the set itself is violated (nearly opposite rows: no point).
+bool violatedRows(const RowsRef& a, const RhsRef& b, double length, QpWork& w) {
+  w.violated.clear();
+  const double threshold = kRowTolerance * rowScale(a, b, w.z, length);
+  bool wedge = false;
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    const double slack = a.row(i).dot(w.z) - b[i];
+    if (slack >= -threshold) continue;
+    if (w.in_set[static_cast<std::size_t>(i)])
+      wedge = true;
+    else
+      w.violated.emplace_back(slack / std::max(a.row(i).norm(), 1e-300), static_cast<int>(i));
+  }
+  return wedge;
+}
+
+/// Adds the most violated rows (at least half kWorkingSetRows, at least doubling the
+/// set: few rounds on thousands of rows) to the working set's arrays.
+void growWorkingSet(const RowsRef& a, const RhsRef& b, QpWork& w) {
+  const std::size_t add = std::min<std::size_t>(
+      w.violated.size(), std::max<std::size_t>(kWorkingSetRows / 2, w.set_rows.size()));
+  std::nth_element(w.violated.begin(), w.violated.begin() + static_cast<std::ptrdiff_t>(add) - 1,
+                   w.violated.end());
+  const auto count = static_cast<Eigen::Index>(w.set_rows.size() + add);
+  if (w.sub_a.cols() != a.cols()) w.sub_a.resize(0, a.cols());
+  if (w.sub_a.rows() < count) {  // grows geometrically: rarely
+    w.sub_a.conservativeResize(std::max<Eigen::Index>(2 * count, 64), a.cols());
+    w.sub_b.conservativeResize(w.sub_a.rows());
+  }
+  for (std::size_t k = 0; k < add; ++k) {
+    const int i = w.violated[k].second;
+    const auto at = static_cast<Eigen::Index>(w.set_rows.size());
+    w.in_set[static_cast<std::size_t>(i)] = 1;
+    w.set_rows.push_back(i);
+    w.sub_a.row(at) = a.row(i);
+    w.sub_b[at] = b[i];
+  }
+}
+
+void setInfeasible(const VecZ& goal, Eigen::Index rows, QpWork& w) {
+  setGoal(goal, rows, w);
+  w.feasible = false;
+}
+
+/// The working set's multipliers (w.lambda, in the set's order) to the m rows'.
+void spreadMultipliers(Eigen::Index m, QpWork& w) {
+  const auto count = static_cast<Eigen::Index>(w.set_rows.size());
+  if (w.gradient.size() < count) w.gradient.resize(2 * count);
+  for (Eigen::Index k = 0; k < count; ++k) w.gradient[k] = w.lambda[static_cast<std::size_t>(k)];
+  w.lambda.assign(static_cast<std::size_t>(m), 0.0);
+  for (Eigen::Index k = 0; k < count; ++k)
+    w.lambda[static_cast<std::size_t>(w.set_rows[static_cast<std::size_t>(k)])] = w.gradient[k];
 }
 
 }  // namespace
 
-QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, const VecX& b) {
-  const int m = static_cast<int>(a.rows());
-  if (m <= kWorkingSetRows) return solveContactQpAllRows(goal, weights, a, b);
+void solveContactQp(const VecZ& goal, const VecZ& weights, const RowsRef& a, const RhsRef& b,
+                    QpWork& w) {
+  const Eigen::Index m = a.rows();
+  if (m <= kWorkingSetRows) return solveAllRows(goal, weights, a, b, w);
   // Working set: solve with the rows the current point violates most, add the rows
   // its solution violates, repeat. The optimum over a subset that keeps every other
   // row is the optimum over all rows, and a subset without a solution means none;
   // the NNLS stays small where hundreds of nearly parallel rows (a face on a large
-  // mesh) made it cycle. Each round adds a row, so it ends.
-  QpResult out;
-  out.feasible = true;
-  out.z = goal;
-  out.lambda = VecX::Zero(m);
-  std::vector<bool> in_set(static_cast<std::size_t>(m), false);
-  std::vector<int> rows;
-  std::vector<std::pair<double, int>> violated;
-  const double length = std::max(0.0, (b - a * goal).maxCoeff());
-  violatedRows(a, b, goal, length, in_set, violated);
-  while (!violated.empty()) {
-    // The most violated first, the set at least doubling: few rounds on thousands of rows.
-    const std::size_t add = std::min<std::size_t>(
-        violated.size(), std::max<std::size_t>(kWorkingSetRows / 2, rows.size()));
-    std::nth_element(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(add) - 1,
-                     violated.end());
-    for (std::size_t k = 0; k < add; ++k) {
-      in_set[static_cast<std::size_t>(violated[k].second)] = true;
-      rows.push_back(violated[k].second);
-    }
-    const auto count = static_cast<Eigen::Index>(rows.size());
-    MatX sub_a(count, a.cols());
-    VecX sub_b(count);
-    for (Eigen::Index k = 0; k < count; ++k) {
-      sub_a.row(k) = a.row(rows[static_cast<std::size_t>(k)]);
-      sub_b[k] = b[rows[static_cast<std::size_t>(k)]];
-    }
-    const QpResult sub = solveContactQpAllRows(goal, weights, sub_a, sub_b);
-    if (!sub.feasible) {
-      out.feasible = false;
-      out.z = goal;
-      out.lambda.setZero();
-      return out;
-    }
-    out.z = sub.z;
-    out.lambda.setZero();
-    for (Eigen::Index k = 0; k < count; ++k)
-      out.lambda[rows[static_cast<std::size_t>(k)]] = sub.lambda[k];
-    violatedRows(a, b, out.z, length, in_set, violated);
+  // mesh) made it cycle. Each round adds a row, so it ends. The subset's LDP is in
+  // the whole set's units and its point judged against every row: the verdict is the
+  // all-rows solve's.
+  const double length = goalViolation(goal, a, b);
+  w.in_set.assign(static_cast<std::size_t>(m), 0);
+  w.set_rows.clear();
+  setGoal(goal, m, w);
+  if (violatedRows(a, b, length, w)) return setInfeasible(goal, m, w);
+  if (w.violated.empty()) return;  // the goal keeps every row
+  for (;;) {
+    growWorkingSet(a, b, w);
+    const auto count = static_cast<Eigen::Index>(w.set_rows.size());
+    if (!solveLdpStep(goal, weights, w.sub_a.topRows(count), w.sub_b.head(count), length, w) ||
+        violatedRows(a, b, length, w))
+      return setInfeasible(goal, m, w);
+    if (w.violated.empty()) return spreadMultipliers(m, w);
   }
-  return out;
+}
+
+QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, const VecX& b) {
+  QpWork w;
+  solveContactQp(goal, weights, a, b, w);
+  return resultOf(w);
 }
 
 }  // namespace sc::detail

@@ -6,16 +6,39 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
+#include <vector>
 
 namespace sc::detail {
 
 using MatX = Eigen::MatrixXd;
 using VecX = Eigen::VectorXd;
+/// z, goal and weights: at most 6 entries, held without the heap.
+using VecZ = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 6, 1>;
+using RowsRef = Eigen::Ref<const MatX>;
+using RhsRef = Eigen::Ref<const VecX>;
 
 struct QpResult {
   bool feasible = false;
   VecX z;       ///< the minimiser when feasible
   VecX lambda;  ///< one multiplier >= 0 per row; > 0 on active rows
+};
+
+/// Work arrays of the QP kept by the caller between calls: once grown to the largest
+/// problem seen, a solve allocates nothing.
+struct QpWork {
+  MatX e;                   ///< the LDP's matrix, (n + 1) x rows
+  VecX u, gradient, trial;  ///< per row
+  VecX residual;            ///< per row of the LDP's matrix
+  std::vector<char> passive, in_set;
+  std::vector<int> passive_cols;
+  std::vector<int> set_rows;  ///< the working set, in the order added
+  MatX sub_a;                 ///< the working set's rows
+  VecX sub_b;
+  std::vector<std::pair<double, int>> violated;
+  bool feasible = false;
+  VecZ z;                      ///< the minimiser when feasible
+  std::vector<double> lambda;  ///< per row of the last solve's problem
 };
 
 /// Solves the QP above as a least-distance program (Lawson & Hanson, "Solving Least
@@ -27,10 +50,24 @@ struct QpResult {
 /// Beyond a couple of dozen rows it works on a growing subset of them (the rows
 /// violated so far), which gives the same solution.
 QpResult solveContactQp(const VecX& goal, const VecX& weights, const MatX& a, const VecX& b);
+/// The same in kept work arrays: the answer in work.feasible, work.z, work.lambda.
+void solveContactQp(const VecZ& goal, const VecZ& weights, const RowsRef& a, const RhsRef& b,
+                    QpWork& work);
 
 /// The same QP solved on all rows at once (the reference the working set is tested
 /// against).
 QpResult solveContactQpAllRows(const VecX& goal, const VecX& weights, const MatX& a, const VecX& b);
+
+/// One step of a working set whose rows are drawn from a larger set: the LDP on the
+/// rows (a, b) with `length`, the largest violation at the goal over the whole set
+/// (the unit of the LDP's thresholds, so that a subset is judged as the whole).
+/// False when the rows admit no point; else the minimiser over them in work.z and
+/// their multipliers in work.lambda, which the caller checks against the other rows.
+bool solveLdpStep(const VecZ& goal, const VecZ& weights, const RowsRef& a, const RhsRef& b,
+                  double length, QpWork& work);
+
+/// Relative violation of a row beyond which a point is rejected (rounding is ~1e-16).
+constexpr double kRowTolerance = 1e-9;
 
 /// Non-negative least squares: argmin |E u - f| subject to u >= 0 (Lawson-Hanson).
 VecX nonNegativeLeastSquares(const MatX& e, const VecX& f, int max_iterations = 0);

@@ -58,13 +58,18 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
     // Rows constrain the pose's translation t = y - R c; shift them to y.
     const Vec3 rc = rotation * center;
     const int m = static_cast<int>(rows_.size());
-    MatX a(m, 3);
-    VecX b(m);
+    MatX& a = twist_.slide_a;  // kept arrays: no allocation per iteration
+    VecX& b = twist_.slide_b;
+    if (a.rows() < m) {
+      a.resize(2 * m, 3);
+      b.resize(2 * m);
+    }
     for (int i = 0; i < m; ++i) {
       a.row(i) = rows_[i].normal.transpose();
       b[i] = rows_[i].offset + rows_[i].normal.dot(rc) + skin;
     }
-    const QpResult qp = solveContactQp(goal_center, Vec3::Ones(), a, b);
+    QpWork& qp = twist_.slide_qp;
+    solveContactQp(goal_center, Vec3::Ones(), a.topRows(m), b.head(m), qp);
     if (!qp.feasible) {  // no translation frees the proxy at this rotation
       *feasible = false;
       break;
@@ -288,32 +293,38 @@ int ProxyTracker::projectTwist(GroupPairQuery& query, const Rigid& goal, const V
                                const PairSettings& settings, Rigid& contact_pose, Vec3& normal) {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   const Vec3 y = proxy_ * center;
-  buildContactRows(query, proxy_, y, contacts_, previous_proxy_, twist_.rows, settings.tolerance);
-  const int m = static_cast<int>(twist_.rows.size());
-  MatX a(m, 6);
-  VecX b(m);
-  for (int i = 0; i < m; ++i) {
-    const ContactRow& row = twist_.rows[i];
-    a.row(i) << row.normal.transpose(), row.lever.cross(row.normal).transpose();
-    b[i] = -row.gap;
-  }
+  buildContactPatches(query, proxy_, contacts_, previous_proxy_, twist_.patches);
   Vec6 target;
   target << goal * center - y, rotationVector(goal.rotation * proxy_.rotation.transpose());
   const double rho = targetRadius(query, center);
-  const QpResult qp = solveContactQp(target, twistWeights(settings, rho), a, b);
+  solvePatchQp(twist_.patches, y, target, twistWeights(settings, rho), 0.0, settings.tolerance,
+               twist_.qp);
+  const QpWork& qp = twist_.qp.qp;
   // Only a step within the tolerance: the rows are linear in rotation.
   const Vec6 z = qp.feasible ? Vec6(qp.z) : Vec6::Zero();
-  if (m > 0 && qp.feasible && z.head<3>().norm() + z.tail<3>().norm() * rho <= settings.tolerance) {
+  if (!twist_.patches.empty() && qp.feasible &&
+      z.head<3>().norm() + z.tail<3>().norm() * rho <= settings.tolerance) {
     if (z == target) return kGoalTouches;  // every row holds at the goal itself
     contact_pose =
         poseAt(rotationFromVector(z.tail<3>()) * proxy_.rotation, center, y + z.head<3>());
   }
+  if (twist_.patches.empty()) return -1;
+  // Main contact: the most loaded row (of the working set: the others carry none),
+  // else the first contact.
   int main = -1;
-  for (int i = 0; i < m; ++i)
-    if (main < 0 || (qp.feasible && qp.lambda[i] > qp.lambda[main])) main = i;
-  if (main < 0) return -1;
-  normal = twist_.rows[main].normal;
-  return twist_.rows[main].contact;
+  double load = 0.0;
+  for (std::size_t i = 0; qp.feasible && i < qp.lambda.size(); ++i) {
+    if (qp.lambda[i] > load) {
+      load = qp.lambda[i];
+      main = static_cast<int>(i);
+    }
+  }
+  if (main < 0) {
+    normal = twist_.patches.front().normal;
+    return twist_.patches.front().contact;
+  }
+  normal = twist_.qp.rows[static_cast<std::size_t>(main)].normal;
+  return twist_.qp.rows[static_cast<std::size_t>(main)].contact;
 }
 
 }  // namespace sc::detail

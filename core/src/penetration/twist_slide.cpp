@@ -47,23 +47,15 @@ int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec
     // Each iteration turns and moves the proxy a little: re-evaluate only the pairs
     // found within a margin while it moves less than that (as the translation slide).
     query.contactsNear(proxy, settings.tolerance, margin, scratch.contacts);
-    buildContactRows(query, proxy, y, scratch.contacts, previous_proxy, scratch.rows,
-                     settings.tolerance);
-    const int m = static_cast<int>(scratch.rows.size());
-    MatX a(m, 6);
-    VecX b(m);
-    for (int i = 0; i < m; ++i) {
-      const ContactRow& row = scratch.rows[i];
-      a.row(i) << row.normal.transpose(), row.lever.cross(row.normal).transpose();
-      b[i] = skin - row.gap;
-    }
+    buildContactPatches(query, proxy, scratch.contacts, previous_proxy, scratch.patches);
+    const bool contact = !scratch.patches.empty();
     Vec6 target;
     target << goal_center - y, rotationVector(goal.rotation * proxy.rotation.transpose());
-    const QpResult qp = solveContactQp(target, weights, a, b);
-    if (!qp.feasible) break;
-    Vec6 z = qp.z;
+    solvePatchQp(scratch.patches, y, target, weights, skin, settings.tolerance, scratch.qp);
+    if (!scratch.qp.qp.feasible) break;
+    Vec6 z = scratch.qp.qp.z;
     const double turn = z.tail<3>().norm() * rho;
-    if (m > 0 && turn > cap) z *= cap / turn;  // a shorter step; advancement keeps it safe
+    if (contact && turn > cap) z *= cap / turn;  // a shorter step; advancement keeps it safe
     if (z.head<3>().norm() + z.tail<3>().norm() * rho <= 1e-12 * (rho + y.norm())) break;
     TwistMotion motion;
     motion.start = proxy;
@@ -72,7 +64,7 @@ int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec
     motion.dtheta = z.tail<3>();
     scratch.skip.clear();
     const double s = advance(query, motion, 0.5 * skin, scratch.skip, scratch.candidates, margin);
-    if (m == 0 && s >= 1.0 && z == target) {  // reached the goal unobstructed
+    if (!contact && s >= 1.0 && z == target) {  // reached the goal unobstructed
       proxy = goal;
       ++k;
       break;

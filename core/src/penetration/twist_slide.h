@@ -11,12 +11,17 @@
 
 namespace sc::detail {
 
-/// Work arrays kept between updates, so steady state allocates nothing.
+/// Work arrays kept between updates, so steady state allocates nothing (also those of
+/// the translation slide's QP).
 struct TwistScratch {
   std::vector<LeafContact> contacts;
   std::vector<LeafContact> candidates;
-  std::vector<ContactRow> rows;
+  std::vector<ContactPatch> patches;
+  PatchQpWork qp;
   std::vector<LeafPair> skip;
+  MatX slide_a;  ///< the translation slide's rows
+  VecX slide_b;
+  QpWork slide_qp;
 };
 
 /// Weights (w_T, w_R) of 1/2 w_T |TPDV - dc|^2 + 1/2 w_R |RPDV - dtheta|^2.

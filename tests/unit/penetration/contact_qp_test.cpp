@@ -89,6 +89,39 @@ TEST(ContactQp, WorkingSetReportsInfeasibleWedges) {
   }
 }
 
+TEST(ContactQp, WorkingSetVerdictOnThinStrips) {
+  // Two opposite rows leaving a strip of width delta among contact-like rows, one of
+  // which holds by a far larger margin than the rest (it sets the acceptance
+  // tolerance, 1e-9 x 1e3): strips down to 1e-12 wide have their point, strips of
+  // negative width beyond the tolerance none, on both solvers. (Within the tolerance
+  // the verdict rests on rounding and the two can differ either way.)
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int feasible = 0, infeasible = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int n = trial % 2 == 0 ? 3 : 6;
+    Problem p = contactLike(rng, n, 60, 40, 0.05, 0.01);
+    const double delta =
+        u(rng) < 0.5 ? std::pow(10.0, -4.0 - 8.0 * u(rng)) : -std::pow(10.0, -3.0 - 2.0 * u(rng));
+    VecX d = VecX::Zero(n);
+    d[1] = 1.0;
+    p.a.row(7) = d.transpose();
+    p.b[7] = 0.02;  // z_1 >= 0.02
+    p.a.row(31) = -d.transpose();
+    p.b[31] = -0.02 - delta;  // z_1 <= 0.02 + delta
+    p.b[50] = -1e3;           // holds by far
+    const QpResult ws = solveContactQp(p.goal, p.weights, p.a, p.b);
+    const QpResult all = solveContactQpAllRows(p.goal, p.weights, p.a, p.b);
+    ASSERT_EQ(ws.feasible, all.feasible) << "trial " << trial << ", delta " << delta;
+    (all.feasible ? feasible : infeasible)++;
+    if (all.feasible) {
+      EXPECT_LT((ws.z - all.z).norm(), 1e-7 * (1.0 + all.z.norm())) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(feasible, 150);
+  EXPECT_GT(infeasible, 150);
+}
+
 TEST(ContactQp, FeasibleGoalIsItsOwnAnswer) {
   std::mt19937 rng(3);
   Problem p = contactLike(rng, 6, 100, 60, 0.05, 0.01);
@@ -97,6 +130,35 @@ TEST(ContactQp, FeasibleGoalIsItsOwnAnswer) {
   ASSERT_TRUE(r.feasible);
   EXPECT_EQ(r.z, p.goal);
   EXPECT_EQ(r.lambda.cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(ContactQp, NonNegativeLeastSquaresMeetsItsOptimalityConditions) {
+  // Any shape of E, also taller than the LDP's 7 rows: u >= 0, the gradient
+  // E^T (f - E u) zero where u > 0 and <= 0 where u = 0.
+  std::mt19937 rng(17);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (const auto& [rows, cols] :
+       {std::pair{4, 9}, std::pair{7, 30}, std::pair{12, 5}, std::pair{20, 20}}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      MatX e(rows, cols);
+      VecX f(rows);
+      for (int i = 0; i < rows; ++i) {
+        f[i] = g(rng);
+        for (int j = 0; j < cols; ++j) e(i, j) = g(rng);
+      }
+      const VecX u = nonNegativeLeastSquares(e, f);
+      const VecX gradient = e.transpose() * (f - e * u);
+      const double scale = 1e-9 * (1.0 + e.norm() * f.norm());
+      for (int j = 0; j < cols; ++j) {
+        EXPECT_GE(u[j], 0.0) << rows << "x" << cols << " trial " << trial;
+        if (u[j] > 0.0) {
+          EXPECT_NEAR(gradient[j], 0.0, scale) << rows << "x" << cols << " trial " << trial;
+        } else {
+          EXPECT_LT(gradient[j], scale) << rows << "x" << cols << " trial " << trial;
+        }
+      }
+    }
+  }
 }
 
 /// The problem with every length multiplied by s: translations, offsets and levers

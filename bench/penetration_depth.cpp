@@ -311,7 +311,7 @@ Convex hullOf(const std::vector<Vec3>& points) {
 /// Hull of n random points on an ellipsoid.
 Convex randomHull(std::mt19937_64& rng, int n) {
   std::uniform_real_distribution<double> axis(0.3, 1.0);
-  const Vec3 radii(axis(rng), axis(rng), axis(rng));
+  const Vec3 radii = sc::support::randomVec3(axis, rng);
   std::vector<Vec3> points;
   for (int i = 0; i < n; ++i) points.push_back(randomDirection(rng).cwiseProduct(radii));
   return hullOf(points);
@@ -384,8 +384,8 @@ std::vector<ConvexCase> makeCases(bool boxes) {
   while (static_cast<int>(cases.size()) < kCasesPerShape) {
     ConvexCase c;
     if (boxes) {
-      c.a = std::make_shared<Convex>(box(Vec3(half(rng), half(rng), half(rng))));
-      c.b = std::make_shared<Convex>(box(Vec3(half(rng), half(rng), half(rng))));
+      c.a = std::make_shared<Convex>(box(sc::support::randomVec3(half, rng)));
+      c.b = std::make_shared<Convex>(box(sc::support::randomVec3(half, rng)));
     } else {
       c.a = std::make_shared<Convex>(randomHull(rng, 20));
       c.b = std::make_shared<Convex>(randomHull(rng, 20));

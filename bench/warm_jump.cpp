@@ -48,6 +48,7 @@ namespace {
 
 using sc::Quat;
 using sc::Vec3;
+using sc::support::randomDirection;
 using Clock = std::chrono::steady_clock;
 
 int g_steps = 2000;    // --steps=N: a shorter path (profiling)
@@ -118,11 +119,6 @@ struct Pair {
     return s;
   }
 };
-
-Vec3 randomDirection(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(rng), n(rng), n(rng)).normalized();
-}
 
 /// The path: the target orbits the opponent by kStepAngle per step and turns as
 /// much; every kJumpEvery steps the orbit jumps ahead by g_jump / radius. Apart: the

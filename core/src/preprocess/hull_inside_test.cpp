@@ -65,15 +65,17 @@ std::vector<Plane> outerPlanes(const ConvexPolytope& poly) {
   return planes;
 }
 
-bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<Plane> planes,
-                   const Aabb& bounds, int also_skip, std::vector<Plane> outer) {
+bool reachesInside(const SharedMesh& shared, const RegionTree& tree, PatchInTree patch,
+                   std::vector<Plane> planes, const Aabb& bounds, int also_skip,
+                   std::vector<Plane> outer) {
   const MeshData& mesh = shared.mesh;
   HalfspacePolytope region(std::move(planes), shared.tol);
   const bool pruned = !outer.empty();
   HalfspacePolytope prune(std::move(outer), shared.tol);
   HalfspacePolytope& filter = pruned ? prune : region;
   bool reached = false;
-  shared.tree.query(
+  tree.query(
+      patch.counted,
       [&](const Aabb& box) {
         if ((box.min.array() > bounds.max.array()).any() ||
             (box.max.array() < bounds.min.array()).any()) {
@@ -82,8 +84,8 @@ bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<
         return filter.boxMayReachInterior(box);
       },
       [&](int t) {
-        if (patch.contains(t) || t == also_skip) return true;
-        if (pruned && !prune.boxMayReachInterior(shared.tree.box(t))) return true;
+        if (patch.patch.contains(t) || t == also_skip) return true;
+        if (pruned && !prune.boxMayReachInterior(tree.box(t))) return true;
         const Tri& f = mesh.triangles[t];
         if (!region.triangleReachesInterior(mesh.vertices[f[0]], mesh.vertices[f[1]],
                                             mesh.vertices[f[2]])) {
@@ -95,7 +97,7 @@ bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<
   return reached;
 }
 
-bool reachesAnyInside(const SharedMesh& shared, const PatchRef& patch,
+bool reachesAnyInside(const SharedMesh& shared, const RegionTree& tree, PatchInTree patch,
                       std::vector<HalfspacePolytope>& polytopes, const std::vector<Aabb>& bounds,
                       int also_skip) {
   const MeshData& mesh = shared.mesh;
@@ -104,7 +106,8 @@ bool reachesAnyInside(const SharedMesh& shared, const PatchRef& patch,
     return boxesOverlap(box, bounds[i]) && polytopes[i].boxMayReachInterior(box);
   };
   bool reached = false;
-  shared.tree.query(
+  tree.query(
+      patch.counted,
       [&](const Aabb& box) {
         for (std::size_t i = 0; i < count; ++i) {
           if (mayReach(i, box)) return true;
@@ -112,8 +115,8 @@ bool reachesAnyInside(const SharedMesh& shared, const PatchRef& patch,
         return false;
       },
       [&](int t) {
-        if (patch.contains(t) || t == also_skip) return true;
-        const Aabb& box = shared.tree.box(t);
+        if (patch.patch.contains(t) || t == also_skip) return true;
+        const Aabb& box = tree.box(t);
         const Tri& f = mesh.triangles[t];
         for (std::size_t i = 0; i < count && !reached; ++i) {
           reached = mayReach(i, box) &&

@@ -24,7 +24,8 @@ Decomposer::Decomposer(const SharedMesh& shared, std::vector<int>& triangle_patc
       triangle_patch_(triangle_patch),
       state_(state),
       progress_(progress),
-      cancel_(cancel) {
+      cancel_(cancel),
+      region_tree_(shared) {
   const std::size_t n = mesh_.triangles.size();
   rank_.assign(n, -1);
   seen_.assign(n, -1);
@@ -74,6 +75,7 @@ bool Decomposer::canJoin(int t) const {
 void Decomposer::addFace(int t) {
   rank_[t] = static_cast<int>(faces_.size());
   faces_.push_back(t);
+  region_tree_.markPatch(t, 1);
   for (int k = 0; k < 3; ++k) {
     const int v = mesh_.triangles[t][k];
     if (in_patch_[v]) continue;
@@ -129,7 +131,10 @@ void Decomposer::enqueueNeighbours(int t) {
 }
 
 void Decomposer::truncate(int count) {
-  for (int i = count; i < static_cast<int>(faces_.size()); ++i) rank_[faces_[i]] = -1;
+  for (int i = count; i < static_cast<int>(faces_.size()); ++i) {
+    rank_[faces_[i]] = -1;
+    region_tree_.markPatch(faces_[i], -1);
+  }
   faces_.resize(count);
   const int keep = count > 0 ? verts_after_[count - 1] : 0;
   verts_after_.resize(count);
@@ -147,14 +152,16 @@ void Decomposer::rebuildFrontier() {
 
 Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
   const PatchRef patch{faces_, rank_, count};
+  // The tree counts all of faces_: it may skip the patch's subtrees only for all.
+  const PatchInTree in_tree{patch, count == static_cast<int>(faces_.size())};
   Result<PatchPolytope> built = buildPatchPolytope(mesh_, adjacency_, patch, tol_, mode);
   if (!built.ok() || count == 1) return built;  // one triangle is the surface itself
   const PatchPolytope& poly = built.value();
   // Small hulls have fewer planes than the outer bound: prune with their own.
   std::vector<Plane> outer;
   if (poly.planes.size() > kOwnPlanesUpTo) outer = outerPlanes(poly.polytope);
-  if (!poly.flat &&
-      reachesInside(shared_, patch, poly.planes, poly.polytope.bounds, -1, std::move(outer))) {
+  if (!poly.flat && reachesInside(shared_, region_tree_, in_tree, poly.planes, poly.polytope.bounds,
+                                  -1, std::move(outer))) {
     return Status(ErrorCode::InvalidGeometry, "patch: a triangle reaches into its hull");
   }
   for (const std::array<Plane, 5>& prism : poly.probes) {
@@ -162,7 +169,8 @@ Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
     const Vec3 depth = Vec3::Constant(kProbeDepth * tol_);
     bounds.min -= depth;
     bounds.max += depth;
-    if (reachesInside(shared_, patch, std::vector<Plane>(prism.begin(), prism.end()), bounds)) {
+    if (reachesInside(shared_, region_tree_, in_tree,
+                      std::vector<Plane>(prism.begin(), prism.end()), bounds)) {
       return Status(ErrorCode::InvalidGeometry, "patch: a triangle reaches under a pocket");
     }
   }
@@ -218,7 +226,8 @@ bool Decomposer::swallows(int t) {
   }
   // One walk of the tree for all of them: a vertex sees several faces of a large hull.
   const PatchRef patch{faces_, rank_, static_cast<int>(faces_.size())};
-  return !tetras_.empty() && reachesAnyInside(shared_, patch, tetras_, tetra_bounds_, t);
+  return !tetras_.empty() &&
+         reachesAnyInside(shared_, region_tree_, {patch, true}, tetras_, tetra_bounds_, t);
 }
 
 Status Decomposer::growPatch(int seed, HullCheck mode) {
@@ -388,6 +397,8 @@ bool Decomposer::tryWholeSurface(std::vector<ConvexPolytope>& patches) {
 Status Decomposer::decompose(int region, RegionResult& out) {
   region_ = region;
   out_ = &out;
+  // Hulls, tetrahedra and probes lie in the region's box widened by the probes' depth.
+  region_tree_.build(region, (kProbeDepth + 1.0) * tol_);
   seeds_.clear();
   seed_scan_ = shared_.region_start[region];
   for (int seed = nextSeed(); seed >= 0; seed = nextSeed()) {

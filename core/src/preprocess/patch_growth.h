@@ -13,6 +13,7 @@
 #include "geometry/halfspace_polytope.h"
 #include "preprocess/decomposition_mesh.h"
 #include "preprocess/patch_polytope.h"
+#include "preprocess/region_tree.h"
 #include "smartcollision/model.h"
 
 namespace sc::detail {
@@ -111,6 +112,8 @@ class Decomposer {
 
   int region_ = -1;
   RegionResult* out_ = nullptr;
+  /// The triangles the current region's hulls can meet; counts the patch's faces.
+  RegionTree region_tree_;
   std::deque<int> seeds_;
   int seed_scan_ = 0;
 

@@ -4,6 +4,7 @@
 // inside tests skip the subtrees the patch fills instead of walking them.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "preprocess/decomposition_mesh.h"
@@ -27,6 +28,12 @@ class RegionTree {
   /// the patch (as counted by markPatch) are not entered.
   template <class Descend, class Visit>
   bool query(bool skip_patch, Descend&& descend, Visit&& visit) const;
+  /// query() for several tests at once: `descend(box, mask)` returns the tests of
+  /// `mask` not yet ruled out for the box (0: not entered), and its children start
+  /// from that, since their boxes lie in its box; `visit(item, mask)` gets its
+  /// leaf's.
+  template <class Descend, class Visit>
+  bool queryMasked(bool skip_patch, std::uint64_t mask, Descend&& descend, Visit&& visit) const;
   const Aabb& box(int t) const { return shared_.tree.box(t); }
 
  private:
@@ -69,6 +76,35 @@ bool RegionTree::query(bool skip_patch, Descend&& descend, Visit&& visit) const 
     } else {
       stack[top++] = node.first + 1;
       stack[top++] = node.first;
+    }
+  }
+  return true;
+}
+
+template <class Descend, class Visit>
+bool RegionTree::queryMasked(bool skip_patch, std::uint64_t mask, Descend&& descend,
+                             Visit&& visit) const {
+  if (nodes_.empty()) return true;
+  struct Entry {
+    int node;
+    std::uint64_t mask;
+  };
+  Entry stack[kMaxDepth + 1];
+  int top = 0;
+  stack[top++] = {0, mask};
+  while (top > 0) {
+    const Entry entry = stack[--top];
+    const Node& node = nodes_[entry.node];
+    if (skip_patch && node.in_patch == node.size) continue;
+    const std::uint64_t open = descend(node.box, entry.mask);
+    if (open == 0) continue;
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        if (!visit(items_[i], open)) return false;
+      }
+    } else {
+      stack[top++] = {node.first + 1, open};
+      stack[top++] = {node.first, open};
     }
   }
   return true;

@@ -181,35 +181,40 @@ Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
 // qhull's hull. Should that disagree (rounding at the tolerance), the patch is
 // grown again from its seed with qhull throughout.
 void Decomposer::setVerified(const ConvexPolytope& hull) {
-  verified_corners_.clear();
-  verified_planes_.clear();
+  hull_corners_.clear();
+  hull_ids_.clear();
+  hull_planes_.clear();
+  hull_vertices_ = static_cast<int>(hull.vertices.size());
   for (const Tri& f : hull.faces) {
     const Vec3 &a = hull.vertices[f[0]], &b = hull.vertices[f[1]], &c = hull.vertices[f[2]];
     const Vec3 twice = (b - a).cross(c - a);
     if (!(twice.norm() > 0.0)) continue;
-    verified_corners_.push_back({a, b, c});
+    hull_corners_.push_back({a, b, c});
+    hull_ids_.push_back({hull.original[f[0]], hull.original[f[1]], hull.original[f[2]]});
     const Vec3 n = twice / twice.norm();
-    verified_planes_.push_back({n, n.dot(a)});
+    hull_planes_.push_back({n, n.dot(a)});
   }
 }
 
 // True when triangle t's new vertex would make the hull swallow another triangle:
-// for each verified face the vertex sees, the tetrahedron they span is in the new
+// for each hull face the vertex sees, the tetrahedron they span is in the new
 // hull. Finds most failures of condition (2) before the batch check does.
 bool Decomposer::swallows(int t) {
   const Tri& f = mesh_.triangles[t];
-  int fresh = -1;
+  fresh_ = -1;
+  visible_.clear();
   for (int k = 0; k < 3; ++k) {
-    if (!in_patch_[f[k]]) fresh = f[k];
+    if (!in_patch_[f[k]]) fresh_ = f[k];
   }
-  if (fresh < 0) return false;
-  const Vec3& v = mesh_.vertices[fresh];
+  if (fresh_ < 0) return false;
+  const Vec3& v = mesh_.vertices[fresh_];
   tetras_.clear();
   tetra_bounds_.clear();
-  for (std::size_t i = 0; i < verified_planes_.size(); ++i) {
-    const Plane& base = verified_planes_[i];
+  for (std::size_t i = 0; i < hull_planes_.size(); ++i) {
+    const Plane& base = hull_planes_[i];
     if (base.signedDistance(v) <= tol_) continue;
-    const std::array<Vec3, 3>& corner = verified_corners_[i];
+    visible_.push_back(static_cast<int>(i));
+    const std::array<Vec3, 3>& corner = hull_corners_[i];
     std::vector<Plane> tetra = {{-base.normal, -base.offset}};
     Aabb bounds;
     bounds.extend(v);
@@ -228,6 +233,60 @@ bool Decomposer::swallows(int t) {
   const PatchRef patch{faces_, rank_, static_cast<int>(faces_.size())};
   return !tetras_.empty() &&
          reachesAnyInside(shared_, region_tree_, {patch, true}, tetras_, tetra_bounds_, t);
+}
+
+// Quickhull's step: the seen faces' edges that no other seen face shares (in the
+// other direction) are the horizon, and each makes a face with the new vertex. The
+// hull only guides the filter (condition (2) is checked on qhull's hull), so
+// rounding here costs at most a missed or a late ban. Rounding can make the seen
+// faces no disc; a closed triangulated hull has 2V - 4 faces, so a step that
+// would leave more than 2V is skipped: the hull stays as it was, its faces still
+// spanning patch vertices, and the filter's cost stays bounded.
+void Decomposer::extendHull() {
+  if (fresh_ < 0 || visible_.empty()) return;
+  const Vec3& v = mesh_.vertices[fresh_];
+  auto shared_edge = [&](int a, int b) {
+    for (int j : visible_) {
+      const std::array<int, 3>& ids = hull_ids_[j];
+      for (int k = 0; k < 3; ++k) {
+        if (ids[k] == b && ids[(k + 1) % 3] == a) return true;
+      }
+    }
+    return false;
+  };
+  horizon_.clear();
+  for (int i : visible_) {
+    for (int k = 0; k < 3; ++k) {
+      if (!shared_edge(hull_ids_[i][k], hull_ids_[i][(k + 1) % 3])) horizon_.push_back(3 * i + k);
+    }
+  }
+  const std::size_t faces = hull_planes_.size() - visible_.size() + horizon_.size();
+  if (faces > 2 * static_cast<std::size_t>(hull_vertices_ + 1)) return;
+  ++hull_vertices_;
+  gone_.assign(hull_planes_.size(), 0);
+  for (int i : visible_) gone_[i] = 1;
+  const std::size_t old_count = hull_planes_.size();
+  for (int edge : horizon_) {
+    const int i = edge / 3, k = edge % 3;
+    const Vec3 p = hull_corners_[i][k], q = hull_corners_[i][(k + 1) % 3];
+    const Vec3 twice = (q - p).cross(v - p);
+    if (!(twice.norm() > 0.0)) continue;
+    const Vec3 n = twice / twice.norm();
+    hull_corners_.push_back({p, q, v});
+    hull_ids_.push_back({hull_ids_[i][k], hull_ids_[i][(k + 1) % 3], fresh_});
+    hull_planes_.push_back({n, n.dot(p)});
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < hull_planes_.size(); ++i) {
+    if (i < old_count && gone_[i]) continue;
+    hull_corners_[kept] = hull_corners_[i];
+    hull_ids_[kept] = hull_ids_[i];
+    hull_planes_[kept] = hull_planes_[i];
+    ++kept;
+  }
+  hull_corners_.resize(kept);
+  hull_ids_.resize(kept);
+  hull_planes_.resize(kept);
 }
 
 Status Decomposer::growPatch(int seed, HullCheck mode) {
@@ -281,6 +340,7 @@ Status Decomposer::growPatch(int seed, HullCheck mode) {
         banned_[t] = serial_;
         continue;
       }
+      extendHull();
       addFace(t);
       if (static_cast<int>(faces_.size()) >= next_check) check();
     }

@@ -263,30 +263,45 @@ void Decomposer::extendHull() {
   const std::size_t faces = hull_planes_.size() - visible_.size() + horizon_.size();
   if (faces > 2 * static_cast<std::size_t>(hull_vertices_ + 1)) return;
   ++hull_vertices_;
-  gone_.assign(hull_planes_.size(), 0);
-  for (int i : visible_) gone_[i] = 1;
-  const std::size_t old_count = hull_planes_.size();
+  cone_.clear();
   for (int edge : horizon_) {
     const int i = edge / 3, k = edge % 3;
     const Vec3 p = hull_corners_[i][k], q = hull_corners_[i][(k + 1) % 3];
     const Vec3 twice = (q - p).cross(v - p);
     if (!(twice.norm() > 0.0)) continue;
     const Vec3 n = twice / twice.norm();
-    hull_corners_.push_back({p, q, v});
-    hull_ids_.push_back({hull_ids_[i][k], hull_ids_[i][(k + 1) % 3], fresh_});
-    hull_planes_.push_back({n, n.dot(p)});
+    cone_.push_back(
+        {{p, q, v}, {hull_ids_[i][k], hull_ids_[i][(k + 1) % 3], fresh_}, {n, n.dot(p)}});
   }
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < hull_planes_.size(); ++i) {
-    if (i < old_count && gone_[i]) continue;
-    hull_corners_[kept] = hull_corners_[i];
-    hull_ids_[kept] = hull_ids_[i];
-    hull_planes_[kept] = hull_planes_[i];
-    ++kept;
+  replaceSeenFaces();
+}
+
+// The cone's faces take the seen faces' slots, then go last, or the seen faces
+// left over give way to the last faces (highest slot first, so that the last is
+// never one of them): no pass over the whole hull. The order of the faces does not
+// change any answer of the filter.
+void Decomposer::replaceSeenFaces() {
+  std::sort(visible_.begin(), visible_.end());
+  const std::size_t reused = std::min(visible_.size(), cone_.size());
+  for (std::size_t j = 0; j < reused; ++j) setHullFace(visible_[j], cone_[j]);
+  for (std::size_t j = reused; j < cone_.size(); ++j) {
+    hull_corners_.push_back(cone_[j].corners);
+    hull_ids_.push_back(cone_[j].ids);
+    hull_planes_.push_back(cone_[j].plane);
   }
-  hull_corners_.resize(kept);
-  hull_ids_.resize(kept);
-  hull_planes_.resize(kept);
+  for (std::size_t j = visible_.size(); j-- > reused;) {
+    const std::size_t last = hull_planes_.size() - 1;
+    setHullFace(visible_[j], {hull_corners_[last], hull_ids_[last], hull_planes_[last]});
+    hull_corners_.pop_back();
+    hull_ids_.pop_back();
+    hull_planes_.pop_back();
+  }
+}
+
+void Decomposer::setHullFace(int slot, const HullFace& face) {
+  hull_corners_[slot] = face.corners;
+  hull_ids_[slot] = face.ids;
+  hull_planes_[slot] = face.plane;
 }
 
 Status Decomposer::growPatch(int seed, HullCheck mode) {

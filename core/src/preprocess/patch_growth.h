@@ -90,6 +90,13 @@ class Decomposer {
   /// After swallows(t) was false and before t joins: the growing hull takes t's new
   /// vertex (the faces it sees give way to a cone from it over their horizon).
   void extendHull();
+  struct HullFace {
+    std::array<Vec3, 3> corners;
+    std::array<int, 3> ids;
+    Plane plane;
+  };
+  void replaceSeenFaces();
+  void setHullFace(int slot, const HullFace& face);
   void finishPatch(PatchPolytope patch);
   /// Triangle t and its reverse: the patch of one triangle, built directly for a
   /// triangle too thin for the ear tests.
@@ -140,10 +147,10 @@ class Decomposer {
   std::vector<std::array<int, 3>> hull_ids_;
   std::vector<Plane> hull_planes_;
   int hull_vertices_ = 0;
-  int fresh_ = -1;            ///< swallows(): the new vertex
-  std::vector<int> visible_;  ///< swallows(): the hull faces it sees
-  std::vector<int> horizon_;  ///< extendHull(): 3 * face + edge
-  std::vector<char> gone_;    ///< extendHull(): per face, seen
+  int fresh_ = -1;              ///< swallows(): the new vertex
+  std::vector<int> visible_;    ///< swallows(): the hull faces it sees
+  std::vector<int> horizon_;    ///< extendHull(): 3 * face + edge
+  std::vector<HullFace> cone_;  ///< extendHull(): the new faces
   /// swallows(): the tetrahedra of new hull over the hull faces a vertex sees.
   std::vector<HalfspacePolytope> tetras_;
   std::vector<Aabb> tetra_bounds_;

@@ -94,9 +94,9 @@ const LoadedMesh* loadMesh(const std::string& name) {
 /// The target approaches the fixed opponent from 0.02 away, penetrates 0.015 to 0.045
 /// deep along the approach (unit-size models) while it circles sideways and rocks,
 /// and withdraws at the end.
-std::vector<sc::Placement> hapticPath(const LoadedMesh& mesh_a, const LoadedMesh& mesh_b,
-                                      const sc::Part& part_a, const sc::Part& part_b,
-                                      const sc::SceneSettings& settings, unsigned seed) {
+std::vector<sc::Placement> hapticPath(double radius_a, double radius_b, const sc::Part& part_a,
+                                      const sc::Part& part_b, const sc::SceneSettings& settings,
+                                      unsigned seed) {
   std::mt19937_64 rng(seed);
   const Quat q0 = randomRotation(rng);
   const Vec3 u = randomDirection(rng);
@@ -110,7 +110,7 @@ std::vector<sc::Placement> hapticPath(const LoadedMesh& mesh_a, const LoadedMesh
   };
   // Touching offset along u: slide in from far by the distance (1-Lipschitz, so a
   // step of d - gap never reaches contact).
-  double s_touch = mesh_a.radius + mesh_b.radius;
+  double s_touch = radius_a + radius_b;
   for (int k = 0; k < 40; ++k) {
     sc::PairTracker probe;
     const sc::DirectedResult r = updateOneWay(probe, part_a, placementAt(s_touch, Vec3::Zero(), q0),
@@ -155,7 +155,7 @@ void BM_HapticPath(benchmark::State& state) {
   // on a thin feature, an ear, would be left by the sideways motion).
   std::vector<sc::Placement> path;
   for (unsigned attempt = 0; attempt < 8; ++attempt) {
-    path = hapticPath(*la, *lb, part_a, part_b, settings,
+    path = hapticPath(la->radius, lb->radius, part_a, part_b, settings,
                       77 + 10 * static_cast<unsigned>(index) + attempt);
     int intersecting = 0;
     for (int k = 150; k < kHapticSteps - 100; k += 200) {
@@ -914,6 +914,113 @@ void BM_ConvexGlobalDepth(benchmark::State& state) {
   }
 }
 
+// ---------------------------------------------------------------------------------
+// A convex pair along a haptic path (issue 19): each update of a carried tracker
+// against libccd's MPR and EPA and Bullet's GJK-EPA at the same pose.
+
+struct ConvexPathRow {
+  std::string method, shapes;
+  int steps = 0, penetrating = 0;
+  double median_us = 0, p99_us = 0, max_us = 0, cpu_median_us = 0, cpu_p99_us = 0, cpu_max_us = 0;
+};
+std::vector<ConvexPathRow> g_convex_path;
+
+/// One method at step k of the path; true when it reports penetration.
+using PathStep = std::function<bool(int)>;
+
+double radiusOf(const Convex& c) {
+  double r = 0.0;
+  for (const Vec3& v : c.vertices) r = std::max(r, v.norm());
+  return r;
+}
+
+void finishPathRow(benchmark::State& state, ConvexPathRow& row, std::vector<double>& wall,
+                   std::vector<double>& cpu) {
+  row.median_us = 1e6 * quantile(wall, 0.5);
+  row.p99_us = 1e6 * quantile(wall, 0.99);
+  row.max_us = 1e6 * quantile(wall, 1.0);
+  row.cpu_median_us = 1e6 * quantile(cpu, 0.5);
+  row.cpu_p99_us = 1e6 * quantile(cpu, 0.99);
+  row.cpu_max_us = 1e6 * quantile(cpu, 1.0);
+  state.counters[row.method + "_cpu_median_us"] = row.cpu_median_us;
+  g_convex_path.push_back(row);
+}
+
+/// Boxes (arg 0) or the 256-vertex hulls of bunny00 and armadillo (arg 1) along the
+/// haptic path (2000 steps, 0.015 to 0.045 deep); every method at every pose, in a
+/// rotating order, timed once (ours carries its tracker: a repeat would be free).
+void BM_ConvexPath(benchmark::State& state) {
+  const bool boxes = state.range(0) == 0;
+  static const Convex box_a = box(Vec3(0.3, 0.4, 0.5)), box_b = box(Vec3(0.5, 0.35, 0.6));
+  const GlobalSet* set = boxes ? nullptr : globalSet(256);
+  if (!boxes && !set) {
+    state.SkipWithError("meshes missing");
+    return;
+  }
+  const Convex& a = boxes ? box_a : *set->a;
+  const Convex& b = boxes ? box_b : *set->b;
+  const sc::ModelPtr ma = boxes ? closedModel(a.mesh) : set->model_a;
+  const sc::ModelPtr mb = boxes ? closedModel(b.mesh) : set->model_b;
+  const sc::Part part_a{ma.get(), sc::Rigid(), 0}, part_b{mb.get(), sc::Rigid(), 1};
+  const sc::SceneSettings settings;
+  const std::vector<sc::Placement> path =
+      hapticPath(radiusOf(a), radiusOf(b), part_a, part_b, settings, 1926);
+  std::vector<sc::Rigid> poses;
+  for (const sc::Placement& p : path) poses.push_back(p.worldFromLocal());
+  const sc::Rigid pose_b;
+  sc::PairTracker tracker;
+  std::vector<std::pair<std::string, PathStep>> methods;
+  methods.emplace_back("smartcollision", [&](int k) {
+    return updateOneWay(tracker, part_a, path[k], part_b, sc::Placement(), settings).penetrating();
+  });
+#if SC_BENCH_HAVE_CCD
+  ccd_t ccd = sc_bench::ccdProblem(ccdSupport, ccdCenter);
+  ccd.max_iterations = 1000;
+  ccd.mpr_tolerance = 1e-8;
+  ccd.epa_tolerance = 1e-8;
+  for (const bool mpr : {true, false})
+    methods.emplace_back(mpr ? "libccd_mpr" : "libccd_epa", [&, mpr](int k) {
+      const CcdShape sa{&a, &poses[k]}, sb{&b, &pose_b};
+      ccd_real_t depth = 0;
+      ccd_vec3_t dir, pos;
+      return (mpr ? ccdMPRPenetration(&sa, &sb, &ccd, &depth, &dir, &pos)
+                  : ccdGJKPenetration(&sa, &sb, &ccd, &depth, &dir, &pos)) == 0;
+    });
+#endif
+#if SC_BENCH_HAVE_BULLET
+  const auto ha = btHull(a), hb = btHull(b);
+  methods.emplace_back("bullet_gjk_epa", [&](int k) {
+    btGjkEpaSolver2::sResults result;
+    return btGjkEpaSolver2::Penetration(ha.get(), btPose(poses[k]), hb.get(), btPose(pose_b),
+                                        btVector3(1, 0, 0), result);
+  });
+#endif
+  const int m = static_cast<int>(methods.size());
+  std::vector<std::vector<double>> wall(m), cpu(m);
+  std::vector<ConvexPathRow> rows(m);
+  for (auto _ : state) {
+    double total = 0.0;
+    for (int k = 0; k < static_cast<int>(path.size()); ++k)
+      for (int i = 0; i < m; ++i) {
+        const int j = (k + i) % m;
+        const double c0 = sc_bench::threadCpuSeconds();
+        const auto t0 = Clock::now();
+        rows[j].penetrating += methods[j].second(k);
+        const auto t1 = Clock::now();
+        cpu[j].push_back(sc_bench::threadCpuSeconds() - c0);
+        wall[j].push_back(sc_bench::seconds(t0, t1));
+        if (j == 0) total += wall[j].back();
+      }
+    state.SetIterationTime(total);
+  }
+  for (int j = 0; j < m; ++j) {
+    rows[j].method = methods[j].first;
+    rows[j].shapes = boxes ? "boxes" : "hulls256";
+    rows[j].steps = static_cast<int>(path.size());
+    finishPathRow(state, rows[j], wall[j], cpu[j]);
+  }
+}
+
 // Modes: 1 = INPUT (the default), 2 = FREE.
 BENCHMARK(BM_HapticPath)
     ->ArgsProduct({{0, 1}, {1, 2}})
@@ -948,6 +1055,12 @@ BENCHMARK(BM_ConvexGlobalDepth)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
+BENCHMARK(BM_ConvexPath)
+    ->DenseRange(0, 1)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
 void writeCsvs(const std::string& dir) {
   // A file whose benchmarks were filtered out is left as it is.
   if (!g_haptic.empty()) {
@@ -973,6 +1086,15 @@ void writeCsvs(const std::string& dir) {
       f.row("%s,%s,%.0e,%d,%d,%d,%.3f,%.3g,%.3g,%.3g,%s,%d", r.method.c_str(), r.shapes.c_str(),
             r.tolerance, r.iterations, r.cases, r.failures, r.median_us, r.median_err, r.p90_err,
             r.max_err, r.parameters.c_str(), r.over_1e6);
+  }
+  if (!g_convex_path.empty()) {
+    sc::support::CsvFile f(dir + "/penetration_convex_path.csv",
+                           "method,shapes,steps,penetrating,median_us,p99_us,max_us,"
+                           "cpu_median_us,cpu_p99_us,cpu_max_us");
+    for (const ConvexPathRow& r : g_convex_path)
+      f.row("%s,%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", r.method.c_str(), r.shapes.c_str(),
+            r.steps, r.penetrating, r.median_us, r.p99_us, r.max_us, r.cpu_median_us, r.cpu_p99_us,
+            r.cpu_max_us);
   }
   if (!g_global.empty()) {
     sc::support::CsvFile f(dir + "/penetration_global.csv",

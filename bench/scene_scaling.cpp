@@ -83,7 +83,8 @@ struct Library {
   Library() {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> half(0.15, 0.4);
-    for (int i = 0; i < 8; ++i) convex.push_back(modelOf(boxMesh(Vec3(half(rng), half(rng), half(rng)))));
+    for (int i = 0; i < 8; ++i)
+      convex.push_back(modelOf(boxMesh(sc::support::randomVec3(half, rng))));
     non_convex = modelOf(lPrismMesh(1.2));
     obstacle = modelOf(lPrismMesh(2.0));
   }

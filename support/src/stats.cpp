@@ -17,8 +17,7 @@ Quat randomRotation(std::mt19937_64& rng) {
 
 Vec3 randomDirection(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
-  const double z = n(rng), y = n(rng), x = n(rng);  // GCC's order, as above
-  return Vec3(x, y, z).normalized();
+  return randomVec3(n, rng).normalized();
 }
 
 double quantile(std::vector<double> samples, double q, QuantileRank rank) {

@@ -92,7 +92,7 @@ std::vector<std::uint8_t> withValidHeader(const Fixture& f, const std::uint8_t* 
   std::vector<std::uint8_t> file(f.reference.begin(), f.reference.begin() + kHeaderSize);
   file.insert(file.end(), data, data + size);
   const std::uint64_t payload_size = size;
-  const std::uint64_t checksum = sc::detail::fnv1a64(data, size);
+  const std::uint64_t checksum = sc::detail::payloadChecksum(data, size);
   std::memcpy(file.data() + kPayloadSizeAt, &payload_size, sizeof payload_size);
   std::memcpy(file.data() + kChecksumAt, &checksum, sizeof checksum);
   return file;

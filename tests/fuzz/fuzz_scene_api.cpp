@@ -97,12 +97,17 @@ constexpr SCenum kTransformTypes[] = {
 constexpr SCenum kActivities[] = {SC_ACTIVITY_ACTIVE,         SC_ACTIVITY_SLEEPING,
                                   SC_ACTIVITY_PASSIVE,        SC_ACTIVITY_INACTIVE,
                                   SC_ACTIVITY_ONE_WAY_ACTIVE, SC_ACTIVITY_ONE_WAY_INACTIVE};
-constexpr SCenum kAttributes[] = {
-    SC_SCENE_MANAGER_MAX_DISTANCE,     SC_SCENE_MANAGER_TOLERANCE,
-    SC_SCENE_MANAGER_SAFETY_COEFFICIENT, SC_SCENE_MANAGER_MAX_ITERATION,
-    SC_SCENE_MANAGER_ROTATION_MODE,    SC_SCENE_MANAGER_FORCE_STIFFNESS,
-    SC_SCENE_MANAGER_TORQUE_STIFFNESS, SC_SCENE_MANAGER_THREADS,
-    SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION, SC_SCENE_MANAGER_CONTACT_POINTS};
+constexpr SCenum kAttributes[] = {SC_SCENE_MANAGER_MAX_DISTANCE,
+                                  SC_SCENE_MANAGER_TOLERANCE,
+                                  SC_SCENE_MANAGER_SAFETY_COEFFICIENT,
+                                  SC_SCENE_MANAGER_MAX_ITERATION,
+                                  SC_SCENE_MANAGER_ROTATION_MODE,
+                                  SC_SCENE_MANAGER_FORCE_STIFFNESS,
+                                  SC_SCENE_MANAGER_TORQUE_STIFFNESS,
+                                  SC_SCENE_MANAGER_THREADS,
+                                  SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION,
+                                  SC_SCENE_MANAGER_CONTACT_POINTS,
+                                  SC_SCENE_MANAGER_TELEPORT_DISTANCE};
 constexpr SCenum kStatusTypes[] = {
     SC_STATUS_COUNT,      SC_STATUS_RESULT,      SC_GROUP_ID,           SC_OBJECT_ID,
     SC_PIECE_ID,          SC_DISTANCE,           SC_CONTACT_NORMAL,     SC_POINT_ON_TARGET,

@@ -2,50 +2,83 @@
 #include "geometry/convex_polytope.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sc::detail {
 
+namespace {
+
+/// Sorts a vertex's few neighbours (insertion sort: a hull vertex has about six).
+void sortSmall(int* first, int* last) {
+  for (int* i = first + 1; i < last; ++i) {
+    const int value = *i;
+    int* j = i;
+    for (; j > first && *(j - 1) > value; --j) *j = *(j - 1);
+    *j = value;
+  }
+}
+
+}  // namespace
+
 void ConvexPolytope::finalize() {
+  FinalizeScratch scratch;
+  finalize(scratch);
+}
+
+void ConvexPolytope::finalize(FinalizeScratch& scratch) {
+  // A bare point set (an inner node of a hierarchy) has no faces to walk: its
+  // arrays stay empty, which every reader takes as "scan the vertices".
+  if (faces.empty()) {
+    adjacency_start.clear();
+    adjacency.clear();
+    vertex_face_start.clear();
+    vertex_faces.clear();
+  } else {
+    buildAdjacency(scratch);
+  }
   const int n = static_cast<int>(vertices.size());
-  // Vertex adjacency in CSR directly (two entries per face corner, then sorted and
-  // made unique per vertex): a vector per vertex cost n allocations per polytope.
-  std::vector<int> start(n + 1, 0);
-  for (const Tri& f : faces)
-    for (int k = 0; k < 3; ++k) start[f[k] + 1] += 2;
-  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<int> entries(static_cast<std::size_t>(start[n]));
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (const Tri& f : faces) {
-    for (int k = 0; k < 3; ++k) {
-      entries[static_cast<std::size_t>(fill[f[k]]++)] = f[(k + 1) % 3];
-      entries[static_cast<std::size_t>(fill[f[k]]++)] = f[(k + 2) % 3];
-    }
-  }
-  adjacency_start.assign(n + 1, 0);
-  int kept = 0;
-  for (int v = 0; v < n; ++v) {
-    // Compacted in place: the write position never passes the read position.
-    const auto first = entries.begin() + start[v];
-    const auto end = entries.begin() + start[v + 1];
-    std::sort(first, end);
-    const auto last = std::unique(first, end);
-    for (auto it = first; it != last; ++it) entries[static_cast<std::size_t>(kept++)] = *it;
-    adjacency_start[v + 1] = kept;
-  }
-  adjacency.assign(entries.begin(), entries.begin() + kept);
-  vertex_face_start.assign(n + 1, 0);
-  for (const Tri& f : faces)
-    for (int k = 0; k < 3; ++k) ++vertex_face_start[f[k] + 1];
-  for (int v = 0; v < n; ++v) vertex_face_start[v + 1] += vertex_face_start[v];
-  vertex_faces.assign(static_cast<std::size_t>(vertex_face_start[n]), -1);
-  fill.assign(vertex_face_start.begin(), vertex_face_start.end() - 1);
-  for (int f = 0; f < static_cast<int>(faces.size()); ++f)
-    for (int k = 0; k < 3; ++k) vertex_faces[static_cast<std::size_t>(fill[faces[f][k]]++)] = f;
   bounds = Aabb();
   for (const Vec3& p : vertices) bounds.extend(p);
   center = n > 0 ? Vec3(0.5 * (bounds.min + bounds.max)) : Vec3::Zero();
   radius = 0.0;
-  for (const Vec3& p : vertices) radius = std::max(radius, (p - center).norm());
+  for (const Vec3& p : vertices) radius = std::max(radius, (p - center).squaredNorm());
+  radius = std::sqrt(radius);
+}
+
+void ConvexPolytope::buildAdjacency(FinalizeScratch& scratch) {
+  // Faces around each vertex (CSR), then each vertex's neighbours read off its
+  // faces, a mark per vertex keeping each once: no sort of every face corner, and
+  // a caller finalizing many polytopes (a cache load: tens of thousands) passes
+  // the same scratch to each.
+  const int n = static_cast<int>(vertices.size());
+  vertex_face_start.assign(n + 1, 0);
+  for (const Tri& f : faces)
+    for (int k = 0; k < 3; ++k) ++vertex_face_start[f[k] + 1];
+  for (int v = 0; v < n; ++v) vertex_face_start[v + 1] += vertex_face_start[v];
+  std::vector<int>& fill = scratch.fill;
+  std::vector<int>& mark = scratch.mark;
+  std::vector<int>& entries = scratch.entries;
+  fill.assign(vertex_face_start.begin(), vertex_face_start.end() - 1);
+  vertex_faces.resize(static_cast<std::size_t>(vertex_face_start[n]));
+  for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+    for (int k = 0; k < 3; ++k) vertex_faces[static_cast<std::size_t>(fill[faces[f][k]]++)] = f;
+  mark.assign(static_cast<std::size_t>(n), -1);
+  entries.clear();
+  adjacency_start.resize(static_cast<std::size_t>(n) + 1);
+  adjacency_start[0] = 0;
+  for (int v = 0; v < n; ++v) {
+    const std::size_t first = entries.size();
+    for (int k = vertex_face_start[v]; k < vertex_face_start[v + 1]; ++k) {
+      for (const int w : faces[static_cast<std::size_t>(vertex_faces[k])]) {
+        if (w == v || mark[w] == v) continue;
+        mark[w] = v;
+        entries.push_back(w);
+      }
+    }
+    sortSmall(entries.data() + first, entries.data() + entries.size());
+    adjacency_start[v + 1] = static_cast<int>(entries.size());
+  }
+  adjacency.assign(entries.begin(), entries.end());
 }
 
 int ConvexPolytope::support(const Vec3& direction, int& hint) const {

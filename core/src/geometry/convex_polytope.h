@@ -10,6 +10,11 @@
 
 namespace sc::detail {
 
+/// Working arrays of ConvexPolytope::finalize, reusable from one polytope to the next.
+struct FinalizeScratch {
+  std::vector<int> fill, mark, entries;
+};
+
 struct ConvexPolytope {
   std::vector<Vec3> vertices;  ///< in the model's local frame
   std::vector<int> original;   ///< per vertex: its index in the input piece
@@ -28,12 +33,18 @@ struct ConvexPolytope {
   Vec3 center = Vec3::Zero();  ///< centre of the bounding sphere
   double radius = 0.0;         ///< bounding sphere radius about `center`
 
-  /// Builds adjacencies, bounds and bounding sphere from vertices and faces.
+  /// Builds adjacencies, bounds and bounding sphere from vertices and faces. Without
+  /// faces (a bare point set) the adjacency and vertex-face arrays are left empty.
   void finalize();
+  /// The same with the caller's working arrays: no allocation beyond the results.
+  void finalize(FinalizeScratch& scratch);
 
   /// Index of a vertex maximising dot(direction, vertex). `hint` (in/out) is the
   /// vertex to start hill climbing from; any value in range is valid.
   int support(const Vec3& direction, int& hint) const;
+
+ private:
+  void buildAdjacency(FinalizeScratch& scratch);
 };
 
 }  // namespace sc::detail

@@ -23,4 +23,17 @@ bool resolveConvexPair(const GroupPairQuery& query, const GroupView& target,
                        const GroupView& opponent, const Rigid& goal, const PairSettings& settings,
                        ConvexPairCache& cache, ProxyOutcome& out, Rigid& free_pose);
 
+/// One update of a convex pair in Input or None mode, straight on the two pieces:
+/// the general path's proxy steps (proxy_tracker.h) for a single leaf pair, with
+/// GJK warm-started from `cache` and the pieces' support mappings, so no hierarchy,
+/// no contact gathering and a QP of at most one row (a projection on a plane). The
+/// proxy is `tracker`'s, read at the start and written back.
+/// @return false (nothing written) for any other pair or mode, a pair first seen
+///   intersecting, and None mode's first penetrating update (its impact pose): the
+///   general path handles those.
+bool trackConvexPair(const GroupPairQuery& query, const GroupView& target,
+                     const GroupView& opponent, const Rigid& goal, const Vec3& center,
+                     const PairSettings& settings, ConvexPairCache& cache, ProxyTracker& tracker,
+                     ProxyOutcome& out);
+
 }  // namespace sc::detail

@@ -95,6 +95,23 @@ PairSettings effectiveSettings(const PairSettings& settings, const GroupPairQuer
   return s;
 }
 
+/// The convex fast path of one direction (convex_resolution.h): a convex pair first
+/// seen intersecting gets its global depth, a tracked one its update, straight on the
+/// two pieces. False leaves the update to the general path.
+bool runConvex(PairState& state, int dir, const GroupView& target, const GroupView& opponent,
+               const Rigid& goal, const PairSettings& settings, ProxyOutcome& outcome) {
+  ProxyTracker& tracker = state.tracker[dir];
+  Rigid free_pose;
+  if (!tracker.tracking() && settings.resolve_initial_intersection &&
+      resolveConvexPair(state.query[dir], target, opponent, goal, settings, state.convex[dir],
+                        outcome, free_pose)) {
+    tracker.startAt(free_pose);
+    return true;
+  }
+  return trackConvexPair(state.query[dir], target, opponent, goal, target.placement.local_center,
+                         settings, state.convex[dir], tracker, outcome);
+}
+
 void runDirection(PairState& state, int dir, const GroupView& target, const GroupView& opponent,
                   const PairSettings& requested, DirectedResult& out) {
   GroupPairQuery& query = state.query[dir];
@@ -111,12 +128,8 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   if (tracker.tracking() &&
       query.displacementBound(state.goal[dir], goal) > settings.teleport_distance)
     tracker.forget();
-  Rigid free_pose;
-  if (!tracker.tracking() && settings.resolve_initial_intersection &&
-      resolveConvexPair(query, target, opponent, goal, settings, state.convex[dir], outcome,
-                        free_pose)) {
-    tracker.startAt(free_pose);  // convex pair first seen intersecting: exact, direct
-  } else {
+  if (!runConvex(state, dir, target, opponent, goal, settings, outcome)) {
+    Rigid free_pose;
     tracker.update(query, goal, center, settings, outcome);
     if (outcome.code == ErrorCode::InvalidInitialTransformation &&
         settings.resolve_initial_intersection &&

@@ -49,14 +49,17 @@ class ProxyTracker {
   void forget() { tracking_ = false; }
   bool tracking() const { return tracking_; }
   /// Starts tracking with the proxy at `proxy`, a free pose found elsewhere (the
-  /// convex fast path of the initial-intersection resolution), penetrating since
-  /// this update as after the general path.
-  void startAt(const Rigid& proxy) {
+  /// convex fast path: convex_resolution.h), penetrating since this update as after
+  /// the general path, or apart (then the proxy is the goal).
+  void startAt(const Rigid& proxy, bool penetrating = true) {
     tracking_ = true;
-    penetrating_ = true;
+    penetrating_ = penetrating;
     ran_out_ = false;
     proxy_ = proxy;
   }
+  /// The proxy (o_from_t) and whether it was penetrating after the last update.
+  const Rigid& proxy() const { return proxy_; }
+  bool penetrating() const { return penetrating_; }
 
  private:
   struct Row {

@@ -9,10 +9,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <thread>
 #include <type_traits>
 #include <utility>
 
@@ -27,19 +29,80 @@ constexpr std::size_t kVertexBytes = 3 * sizeof(double) + sizeof(std::int32_t);
 constexpr std::size_t kFaceBytes = 4 * sizeof(std::int32_t);
 constexpr std::size_t kNodeBytes = 3 * sizeof(std::int32_t);
 
-/// Appends values to a buffer. With a file, the buffer is written out whenever it
-/// holds kFlushBytes, and the payload's checksum is taken on the way, so a file
-/// never needs a buffer of its whole size.
+/// payloadChecksum taken a piece at a time: whole 32-byte blocks go through the four
+/// lanes, a partial one waits for the next piece, so the result does not depend on
+/// how the bytes are split.
+class PayloadHash {
+ public:
+  void update(const std::uint8_t* p, std::size_t n) {
+    total_ += n;
+    if (pending_ > 0) {
+      const std::size_t take = std::min(n, kBlock - pending_);
+      std::memcpy(block_ + pending_, p, take);
+      pending_ += take;
+      p += take;
+      n -= take;
+      if (pending_ < kBlock) return;
+      mixBlock(block_);
+      pending_ = 0;
+    }
+    for (; n >= kBlock; p += kBlock, n -= kBlock) mixBlock(p);
+    std::memcpy(block_, p, n);
+    pending_ = n;
+  }
+  /// The checksum of everything so far: the last partial block zero-padded, then
+  /// the lanes and the length folded together.
+  std::uint64_t value() const {
+    PayloadHash last = *this;
+    if (last.pending_ > 0) {
+      std::memset(last.block_ + last.pending_, 0, kBlock - last.pending_);
+      last.mixBlock(last.block_);
+    }
+    std::uint64_t h = total_ * kPrime1;
+    for (const std::uint64_t lane : last.lanes_) h = round(h, lane);
+    h ^= h >> 29;
+    h *= kPrime2;
+    return h ^ (h >> 32);
+  }
+
+ private:
+  static constexpr std::size_t kBlock = 32;
+  static constexpr std::uint64_t kPrime1 = 0x9E3779B185EBCA87ull;
+  static constexpr std::uint64_t kPrime2 = 0xC2B2AE3D27D4EB4Full;
+  static std::uint64_t round(std::uint64_t lane, std::uint64_t word) {
+    lane += word * kPrime2;
+    lane = (lane << 31) | (lane >> 33);
+    return lane * kPrime1;
+  }
+  void mixBlock(const std::uint8_t* p) {
+    for (int k = 0; k < 4; ++k) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, p + 8 * k, sizeof(word));
+      lanes_[k] = round(lanes_[k], word);
+    }
+  }
+  std::uint64_t lanes_[4] = {kPrime1 + kPrime2, kPrime2, 0, 0 - kPrime1};
+  std::uint8_t block_[kBlock] = {};
+  std::size_t pending_ = 0;
+  std::uint64_t total_ = 0;
+};
+
+/// Appends values to a buffer at a write position (no resize per value). With a
+/// file, the buffer is written out whenever it holds kFlushBytes, and the payload's
+/// checksum is taken on the way, so a file never needs a buffer of its whole size;
+/// in memory the buffer ends at the last value written (finish()).
 class Writer {
  public:
-  Writer(std::vector<std::uint8_t>& out, std::FILE* file) : out_(out), file_(file) {}
+  Writer(std::vector<std::uint8_t>& out, std::FILE* file) : out_(out), file_(file) {
+    if (file_ != nullptr) out_.resize(kFlushBytes + 64);  // a value never passes it
+  }
   template <class T>
   void put(T value) {
     static_assert(std::is_trivially_copyable_v<T>);
-    const std::size_t at = out_.size();
-    out_.resize(at + sizeof(T));
-    std::memcpy(out_.data() + at, &value, sizeof(T));
-    if (file_ != nullptr && out_.size() >= kFlushBytes) flush();
+    if (at_ + sizeof(T) > out_.size()) out_.resize(std::max(2 * out_.size(), at_ + sizeof(T)));
+    std::memcpy(out_.data() + at_, &value, sizeof(T));
+    at_ += sizeof(T);
+    if (file_ != nullptr && at_ >= kFlushBytes) flush();
   }
   void putCount(std::size_t n) { put(static_cast<std::uint64_t>(n)); }
   void putPolytope(const ConvexPolytope& p) {
@@ -57,24 +120,27 @@ class Writer {
   /// Checksums and writes what the buffer holds (file only); false on a write error.
   bool flush() {
     const std::size_t skip = written_ < kHeaderSize ? kHeaderSize - written_ : 0;
-    if (out_.size() > skip) checksum_ = fnv1a64(out_.data() + skip, out_.size() - skip, checksum_);
-    ok_ = ok_ && std::fwrite(out_.data(), 1, out_.size(), file_) == out_.size();
-    written_ += out_.size();
-    out_.clear();
+    if (at_ > skip) hash_.update(out_.data() + skip, at_ - skip);
+    ok_ = ok_ && std::fwrite(out_.data(), 1, at_, file_) == at_;
+    written_ += at_;
+    at_ = 0;
     return ok_;
   }
   /// The payload's checksum; with a file, after the last flush().
   std::uint64_t checksum() const {
-    if (file_ != nullptr) return checksum_;
-    return fnv1a64(out_.data() + kHeaderSize, out_.size() - kHeaderSize);
+    if (file_ != nullptr) return hash_.value();
+    return payloadChecksum(out_.data() + kHeaderSize, at_ - kHeaderSize);
   }
+  /// In memory: the buffer cut to the bytes written.
+  void finish() { out_.resize(at_); }
 
  private:
   static constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
   std::vector<std::uint8_t>& out_;
   std::FILE* file_;
+  std::size_t at_ = 0;       ///< bytes in the buffer
   std::size_t written_ = 0;  ///< bytes already in the file
-  std::uint64_t checksum_ = kFnvOffset;
+  PayloadHash hash_;
   bool ok_ = true;
 };
 
@@ -96,6 +162,12 @@ class Reader {
     n = static_cast<std::size_t>(raw);
     return true;
   }
+  /// The next `n` bytes, which a getCount() of them has shown to be there.
+  const std::uint8_t* take(std::size_t n) {
+    const std::uint8_t* p = data_ + at_;
+    at_ += n;
+    return p;
+  }
   bool done() const { return ok_ && at_ == size_; }
 
  private:
@@ -106,38 +178,41 @@ class Reader {
 };
 
 /// Reads one polytope; vertex `original` must index the mesh's vertices and face
-/// sources its triangles (or be -1).
+/// sources its triangles (or be -1). Records are read straight from the bytes once
+/// their count is known to fit. Not finalized: finalizeAll does that for all.
 bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
   std::size_t nv = 0, nf = 0;
   if (!r.getCount(kVertexBytes, nv) || nv == 0) return false;
   p.vertices.resize(nv);
   p.original.resize(nv);
   const auto vertex_limit = static_cast<std::int64_t>(mesh.vertices.size());
-  for (std::size_t i = 0; i < nv; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      double x = 0.0;
-      if (!r.get(x) || !std::isfinite(x)) return false;
-      p.vertices[i][k] = x;
-    }
+  const std::uint8_t* at = r.take(nv * kVertexBytes);
+  for (std::size_t i = 0; i < nv; ++i, at += kVertexBytes) {
+    double xyz[3];
     std::int32_t original = -1;
-    if (!r.get(original) || original < 0 || original >= vertex_limit) return false;
+    std::memcpy(xyz, at, sizeof(xyz));
+    std::memcpy(&original, at + sizeof(xyz), sizeof(original));
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]) ||
+        original < 0 || original >= vertex_limit)
+      return false;
+    p.vertices[i] = Vec3(xyz[0], xyz[1], xyz[2]);
     p.original[i] = original;
   }
   if (!r.getCount(kFaceBytes, nf)) return false;
   p.faces.resize(nf);
   p.face_source.resize(nf);
   const auto triangle_limit = static_cast<std::int64_t>(mesh.triangles.size());
-  for (std::size_t f = 0; f < nf; ++f) {
+  at = r.take(nf * kFaceBytes);
+  for (std::size_t f = 0; f < nf; ++f, at += kFaceBytes) {
+    std::int32_t record[4];
+    std::memcpy(record, at, sizeof(record));
     for (int k = 0; k < 3; ++k) {
-      std::int32_t v = -1;
-      if (!r.get(v) || v < 0 || static_cast<std::size_t>(v) >= nv) return false;
-      p.faces[f][k] = v;
+      if (record[k] < 0 || static_cast<std::size_t>(record[k]) >= nv) return false;
+      p.faces[f][k] = record[k];
     }
-    std::int32_t source = -1;
-    if (!r.get(source) || source < -1 || source >= triangle_limit) return false;
-    p.face_source[f] = source;
+    if (record[3] < -1 || record[3] >= triangle_limit) return false;
+    p.face_source[f] = record[3];
   }
-  p.finalize();
   return true;
 }
 
@@ -150,6 +225,28 @@ bool getPolytopes(Reader& r, const MeshData& mesh, std::vector<ConvexPolytope>& 
     if (!getPolytope(r, mesh, p)) return false;
   }
   return true;
+}
+
+/// finalize() on every polytope of `a` then `b`, on up to `threads` threads taking
+/// blocks of polytopes in turn; each polytope's result depends on it alone.
+void finalizeAll(std::vector<ConvexPolytope>& a, std::vector<ConvexPolytope>& b, int threads) {
+  constexpr std::size_t kBlock = 64;
+  const std::size_t total = a.size() + b.size();
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    FinalizeScratch scratch;
+    for (std::size_t from = next.fetch_add(kBlock); from < total; from = next.fetch_add(kBlock)) {
+      for (std::size_t i = from; i < std::min(total, from + kBlock); ++i)
+        (i < a.size() ? a[i] : b[i - a.size()]).finalize(scratch);
+    }
+  };
+  const std::size_t helpers =
+      std::min(static_cast<std::size_t>(std::max(threads, 1) - 1), total / kBlock);
+  std::vector<std::thread> pool;
+  pool.reserve(helpers);
+  for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
 }
 
 struct Header {
@@ -258,7 +355,7 @@ const char* contentProblem(const MeshData& mesh, const std::vector<ConvexPolytop
 
 /// Decodes the payload of a file whose header and checksum passed into `data`; null
 /// on success, else why it is refused (`data` unchanged).
-const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& data) {
+const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& data, int threads) {
   const char* const malformed = "its payload is malformed";
   Reader r(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize);
   std::uint8_t convex = 0;
@@ -278,6 +375,7 @@ const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& dat
     n.polytope = polytope;
   }
   if (!getPolytopes(r, data.mesh, bvh.hulls) || !r.done()) return malformed;
+  finalizeAll(patches, bvh.hulls, threads);
   if (!finishHullBvh(patches, bvh)) return "its hierarchy is not a tree over its leaves";
   if (const char* problem = contentProblem(data.mesh, patches, bvh)) return problem;
   data.patches = std::move(patches);
@@ -295,6 +393,12 @@ std::uint64_t fnv1a64(const void* bytes, std::size_t size, std::uint64_t hash) {
     hash *= 1099511628211ull;
   }
   return hash;
+}
+
+std::uint64_t payloadChecksum(const void* bytes, std::size_t size) {
+  PayloadHash hash;
+  hash.update(static_cast<const std::uint8_t*>(bytes), size);
+  return hash.value();
 }
 
 std::uint64_t pieceInputHash(ModelKind kind, const MeshData& mesh) {
@@ -368,24 +472,25 @@ bool writePieceCache(std::FILE* file, std::uint64_t input_hash, const PieceData&
 
 std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const PieceData& data) {
   std::vector<std::uint8_t> bytes;
-  bytes.reserve(kHeaderSize + payloadBytes(data));
+  bytes.resize(kHeaderSize + payloadBytes(data));
   Writer w(bytes, nullptr);
   encodeInto(w, input_hash, data);
+  w.finish();
   const std::uint64_t checksum = w.checksum();
   std::memcpy(bytes.data() + kHeaderSize - sizeof(checksum), &checksum, sizeof(checksum));
   return bytes;
 }
 
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
-                      PieceData& data, std::string* rejected) {
+                      PieceData& data, std::string* rejected, int threads) {
   Reader head(bytes.data(), bytes.size());
   Header h;
   if (!readHeader(head, h) || !headerMatches(h, input_hash, data.kind, bytes.size())) return false;
   const std::uint8_t* payload = bytes.data() + kHeaderSize;
-  if (fnv1a64(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
+  if (payloadChecksum(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
   // Past the checksum the file is intact: what follows finds a file that was not
   // written by this library for this input (forged, or written by a bug).
-  const char* problem = decodePayload(bytes, data);
+  const char* problem = decodePayload(bytes, data, threads);
   if (problem == nullptr) return true;
   if (rejected != nullptr) *rejected = problem;
   return false;
@@ -414,7 +519,7 @@ bool existsAsNonRegular(const std::string& path) {
 }  // namespace
 
 bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
-                    std::string* rejected) {
+                    std::string* rejected, int threads) {
   std::FILE* file = openRegularFile(path);
   if (file == nullptr) return false;
   // The header first: a foreign or stale file of any size is rejected unread.
@@ -433,7 +538,7 @@ bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData
          bytes.size() - kHeaderSize;
   }
   std::fclose(file);
-  return ok && decodePieceCache(bytes, input_hash, data, rejected);
+  return ok && decodePieceCache(bytes, input_hash, data, rejected, threads);
 }
 
 Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data) {

@@ -13,11 +13,15 @@ namespace sc::detail {
 
 /// Format version; bump it whenever the layout or the preprocessing changes, so
 /// files written by other versions are rebuilt.
-inline constexpr std::uint32_t kPieceCacheVersion = 1;
+inline constexpr std::uint32_t kPieceCacheVersion = 2;
 
 /// FNV-1a 64 of `size` bytes, continuing from `hash` (start: kFnvOffset).
 inline constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
 std::uint64_t fnv1a64(const void* bytes, std::size_t size, std::uint64_t hash = kFnvOffset);
+
+/// Checksum of a cache file's payload: four interleaved 64-bit multiply-rotate lanes
+/// over little-endian words, about 15x faster to take than FNV-1a's byte steps.
+std::uint64_t payloadChecksum(const void* bytes, std::size_t size);
 
 /// Key of a piece's cache: FNV-1a 64 of the kind and the input arrays as given
 /// (before any orientation fix).
@@ -25,8 +29,8 @@ std::uint64_t pieceInputHash(ModelKind kind, const MeshData& mesh);
 
 /// The file's bytes for `data` (its patches, hierarchy and the statistics they
 /// imply). Layout, little-endian: header {magic "SCPIECE\0", u32 version,
-/// u32 0x01020304, u32 kind, u32 0, u64 input hash, u64 payload size, u64 FNV-1a 64
-/// of the payload}, then the payload.
+/// u32 0x01020304, u32 kind, u32 0, u64 input hash, u64 payload size, u64
+/// payloadChecksum}, then the payload.
 std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const PieceData& data);
 
 /// Fills data.patches, data.hierarchy and the statistics they carry from `bytes`.
@@ -39,13 +43,14 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 /// faces are the input triangles and cover them all, the hierarchy is a tree over
 /// the leaves and every inner hull's box contains its children's. A file failing
 /// those (forged, or written by a bug) sets `*rejected` (if given) to the reason;
-/// a damaged, stale or foreign file leaves it unchanged.
+/// a damaged, stale or foreign file leaves it unchanged. The polytopes' derived
+/// arrays (finalize) are computed on up to `threads` threads; same result for any count.
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
-                      PieceData& data, std::string* rejected = nullptr);
+                      PieceData& data, std::string* rejected = nullptr, int threads = 1);
 
 /// decodePieceCache on the file at `path`; false when it is missing or unreadable.
 bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
-                    std::string* rejected = nullptr);
+                    std::string* rejected = nullptr, int threads = 1);
 
 /// Writes the file, a chunk at a time (no buffer of its size), through a temporary
 /// file renamed over `path`, so readers never see a partial file. File status when

@@ -198,6 +198,8 @@ class Builder {
                      [](const Keyed& a, const Keyed& b) { return a.original < b.original; });
     std::vector<Vec3> points;
     std::vector<int> original;
+    points.reserve(keyed.size());  // temporaries: one allocation each, not a doubling series
+    original.reserve(keyed.size());
     for (std::size_t k = 0; k < keyed.size(); ++k) {
       if (k > 0 && keyed[k].original == keyed[k - 1].original &&
           *keyed[k].point == *keyed[k - 1].point)

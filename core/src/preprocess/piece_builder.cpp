@@ -76,6 +76,7 @@ ConvexPolytope convexPatch(const MeshData& mesh) {
 /// vertices (coincident ones for a degenerate triangle) with both windings as faces.
 void buildSoupLeaves(PieceData& data) {
   data.patches.reserve(data.mesh.triangles.size());
+  detail::FinalizeScratch scratch;
   for (std::size_t t = 0; t < data.mesh.triangles.size(); ++t) {
     const Tri& f = data.mesh.triangles[t];
     ConvexPolytope leaf;
@@ -87,7 +88,7 @@ void buildSoupLeaves(PieceData& data) {
     }
     leaf.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
     leaf.face_source = {static_cast<int>(t), static_cast<int>(t)};
-    leaf.finalize();
+    leaf.finalize(scratch);
     data.patches.push_back(std::move(leaf));
   }
   data.stats.patches = static_cast<int>(data.patches.size());
@@ -180,7 +181,8 @@ Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& o
   data->bounds = referencedBounds(data->mesh);
   Status file_status;
   std::string rejected;
-  if (use_cache && detail::loadPieceCache(options.cache_file, key, *data, &rejected)) {
+  if (use_cache &&
+      detail::loadPieceCache(options.cache_file, key, *data, &rejected, threadCount(options))) {
     data->stats.from_cache = true;
   } else {
     if (cancelled(options)) return cancelledStatus();

@@ -111,5 +111,23 @@ TEST(ConvexPolytope, FinalizeAdjacencyEqualsTheFaceEdges) {
   }
 }
 
+// A bare point set (no faces, as the hierarchy keeps small inner nodes) keeps no
+// adjacency arrays; its support is still the brute-force maximum, past the size at
+// which faced polytopes hill-climb.
+TEST(ConvexPolytope, PointSetHasNoAdjacencyAndScansForItsSupport) {
+  test::Rng rng(78);
+  ConvexPolytope points;
+  for (int i = 0; i < 40; ++i) points.vertices.push_back(test::randomDirection(rng));
+  points.finalize();
+  EXPECT_TRUE(points.adjacency_start.empty() && points.adjacency.empty());
+  EXPECT_TRUE(points.vertex_face_start.empty() && points.vertex_faces.empty());
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec3 d = test::randomDirection(rng);
+    int hint = trial % 40;
+    const int got = points.support(d, hint);
+    EXPECT_EQ(points.vertices[got].dot(d), supportValue(points, d));
+  }
+}
+
 }  // namespace
 }  // namespace sc::detail

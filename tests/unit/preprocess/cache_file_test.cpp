@@ -10,6 +10,7 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include <fstream>
 #include <future>
 #include <iterator>
+#include <random>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -45,7 +47,7 @@ constexpr std::size_t kHashOffset = 24;
 /// The fields a cache file stores, to compare as one.
 auto storedFields(const ConvexPolytope& p) {
   return std::tie(p.vertices, p.original, p.faces, p.face_source, p.adjacency_start, p.adjacency,
-                  p.center, p.radius);
+                  p.vertex_face_start, p.vertex_faces, p.center, p.radius);
 }
 auto storedFields(const HullBvhNode& n) {
   return std::tie(n.left, n.right, n.polytope, n.center, n.radius);
@@ -190,6 +192,33 @@ TEST(CacheFileMesh, RealMeshRoundTripIsExactAndAnswersTheSame) {
   }
 }
 
+// The payload checksum changes with every single bit flipped and with two unequal
+// words swapped, at any length (the partial last block included).
+TEST(CacheFileChecksum, SeesEveryBitFlipAndWordSwap) {
+  test::Rng rng(0x5EED);
+  std::uniform_int_distribution<int> byte(0, 255);
+  for (const std::size_t size : {1u, 7u, 31u, 32u, 33u, 200u}) {
+    std::vector<std::uint8_t> bytes(size);
+    for (std::uint8_t& b : bytes) b = static_cast<std::uint8_t>(byte(rng));
+    const std::uint64_t sum = payloadChecksum(bytes.data(), size);
+    for (std::size_t i = 0; i < size; ++i) {
+      for (int bit = 0; bit < 8; ++bit) {
+        bytes[i] ^= static_cast<std::uint8_t>(1u << bit);
+        EXPECT_NE(payloadChecksum(bytes.data(), size), sum) << size << " " << i << " " << bit;
+        bytes[i] ^= static_cast<std::uint8_t>(1u << bit);
+      }
+    }
+    for (std::size_t i = 0; i + 16 <= size; i += 8) {
+      std::swap_ranges(bytes.begin() + i, bytes.begin() + i + 8, bytes.begin() + i + 8);
+      EXPECT_NE(payloadChecksum(bytes.data(), size), sum) << size << " " << i;
+      std::swap_ranges(bytes.begin() + i, bytes.begin() + i + 8, bytes.begin() + i + 8);
+    }
+    // A zero byte appended is another payload, not the same padded block.
+    bytes.push_back(0);
+    EXPECT_NE(payloadChecksum(bytes.data(), size + 1), sum) << size;
+  }
+}
+
 // A file of several write chunks (1 MiB each) holds exactly the bytes encoded in
 // memory, checksum included, and loads.
 TEST(CacheFileMesh, FileWrittenInChunksEqualsTheEncodedBytes) {
@@ -206,6 +235,26 @@ TEST(CacheFileMesh, FileWrittenInChunksEqualsTheEncodedBytes) {
   const Result<PiecePtr> loaded = buildPiece(ModelKind::TriangleSoup, soup, options);
   ASSERT_TRUE(loaded.ok());
   EXPECT_TRUE(loaded.value()->stats().from_cache);
+}
+
+// Decoding derives every polytope's arrays on the threads it is given: one and two
+// threads give the build's piece exactly (closed torus: patches and inner hulls).
+TEST(CacheFileMesh, DecodedOnOneAndTwoThreadsEqualsTheBuild) {
+  const MeshData torus = test::torusMesh(1.0, 0.3, 80, 40);
+  const Result<PiecePtr> built = buildPiece(ModelKind::ClosedPolyhedron, torus);
+  ASSERT_TRUE(built.ok()) << built.status().message();
+  const PieceData& expected = built.value()->internals();
+  ASSERT_GT(expected.patches.size() + expected.hierarchy.hulls.size(), 128u);
+  const std::uint64_t key = pieceInputHash(ModelKind::ClosedPolyhedron, torus);
+  const std::vector<std::uint8_t> bytes = encodePieceCache(key, expected);
+  for (const int threads : {1, 2}) {
+    PieceData loaded;
+    loaded.kind = ModelKind::ClosedPolyhedron;
+    loaded.mesh = expected.mesh;
+    loaded.stats.flipped = expected.stats.flipped;
+    ASSERT_TRUE(decodePieceCache(bytes, key, loaded, nullptr, threads)) << threads;
+    ASSERT_NO_FATAL_FAILURE(expectSamePiece(expected, loaded)) << threads;
+  }
 }
 
 TEST_F(CacheFile, RoundTripLoadsTheSamePreprocessing) {
@@ -349,7 +398,7 @@ TEST_F(CacheFile, FifoIsNeitherReadNorReplaced) {
 /// Re-signs a modified payload, so decoding gets past the checksum.
 void resign(std::vector<std::uint8_t>& bytes) {
   const std::uint64_t size = bytes.size() - kHeaderBytes;
-  const std::uint64_t sum = fnv1a64(bytes.data() + kHeaderBytes, size);
+  const std::uint64_t sum = payloadChecksum(bytes.data() + kHeaderBytes, size);
   std::memcpy(bytes.data() + 32, &size, sizeof(size));
   std::memcpy(bytes.data() + 40, &sum, sizeof(sum));
 }

@@ -12,17 +12,20 @@
 //  4. condition (2), the hull stays inside the solid, is checked in batches: at
 //     patch sizes doubling since the last verified size, build the patch's
 //     polytope (patch_polytope.h) and test the other triangles against it with
-//     the AABB tree: none may reach deeper than the tolerance into the hull, nor
+//     the region's tree (region_tree.h: every triangle that can meet a hull of
+//     the region): none may reach deeper than the tolerance into the hull, nor
 //     into the probe prisms of flat or thin hulls. Hulls only grow with the
 //     patch, so a failure is bracketed by binary search; the face after the
 //     longest good prefix is banned from this patch and growth resumes there.
 //     Between checks, a cheap sound filter: the tetrahedron spanned by a face's
-//     new vertex and a face of the last verified hull that the vertex sees lies
-//     inside the new hull, so a triangle reaching into it bans the face at once;
+//     new vertex and a face of the growing hull (the last verified hull, extended
+//     by each vertex added since) that the vertex sees lies inside the new hull,
+//     so a triangle reaching into it bans the face at once;
 //  5. seeds are taken next to finished patches, so patches tile the surface;
 //     patches grow within one region (median splits of the triangles' centres,
-//     at most kRegionTriangles each) while condition (2) still tests the whole
-//     mesh: a region's patches depend on it alone, so regions run in parallel
+//     at most kRegionTriangles each) while condition (2) still tests every
+//     triangle the hulls can meet, of any region: a region's patches depend on
+//     it alone, so regions run in parallel
 //     and the result is the same for any thread count, and a patch's size, with
 //     the cost of its checks, is bounded, so the work grows linearly;
 //  6. a hull face that equals an input triangle of another patch is a model face

@@ -16,8 +16,8 @@
 namespace sc::detail {
 
 /// Patches grow within regions of at most this many triangles (their hulls are still
-/// tested against the whole mesh). It bounds a patch's size, and with it the cost
-/// of its checks, so the work grows linearly with the mesh; and regions are
+/// tested against every triangle they can meet, of any region). It bounds a patch's size, and with
+/// it the cost of its checks, so the work grows linearly with the mesh; and regions are
 /// independent, so they run in parallel.
 inline constexpr int kRegionTriangles = 8192;
 

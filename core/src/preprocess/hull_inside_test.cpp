@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <utility>
 
 namespace sc::detail {
@@ -65,15 +66,17 @@ std::vector<Plane> outerPlanes(const ConvexPolytope& poly) {
   return planes;
 }
 
-bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<Plane> planes,
-                   const Aabb& bounds, int also_skip, std::vector<Plane> outer) {
+bool reachesInside(const SharedMesh& shared, const RegionTree& tree, PatchInTree patch,
+                   std::vector<Plane> planes, const Aabb& bounds, int also_skip,
+                   std::vector<Plane> outer) {
   const MeshData& mesh = shared.mesh;
   HalfspacePolytope region(std::move(planes), shared.tol);
   const bool pruned = !outer.empty();
   HalfspacePolytope prune(std::move(outer), shared.tol);
   HalfspacePolytope& filter = pruned ? prune : region;
   bool reached = false;
-  shared.tree.query(
+  tree.query(
+      patch.counted,
       [&](const Aabb& box) {
         if ((box.min.array() > bounds.max.array()).any() ||
             (box.max.array() < bounds.min.array()).any()) {
@@ -82,8 +85,8 @@ bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<
         return filter.boxMayReachInterior(box);
       },
       [&](int t) {
-        if (patch.contains(t) || t == also_skip) return true;
-        if (pruned && !prune.boxMayReachInterior(shared.tree.box(t))) return true;
+        if (patch.patch.contains(t) || t == also_skip) return true;
+        if (pruned && !prune.boxMayReachInterior(tree.box(t))) return true;
         const Tri& f = mesh.triangles[t];
         if (!region.triangleReachesInterior(mesh.vertices[f[0]], mesh.vertices[f[1]],
                                             mesh.vertices[f[2]])) {
@@ -95,7 +98,7 @@ bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<
   return reached;
 }
 
-bool reachesAnyInside(const SharedMesh& shared, const PatchRef& patch,
+bool reachesAnyInside(const SharedMesh& shared, const RegionTree& tree, PatchInTree patch,
                       std::vector<HalfspacePolytope>& polytopes, const std::vector<Aabb>& bounds,
                       int also_skip) {
   const MeshData& mesh = shared.mesh;
@@ -103,25 +106,32 @@ bool reachesAnyInside(const SharedMesh& shared, const PatchRef& patch,
   auto mayReach = [&](std::size_t i, const Aabb& box) {
     return boxesOverlap(box, bounds[i]) && polytopes[i].boxMayReachInterior(box);
   };
+  // Bit i: polytope i may still be reached. A box walks the open ones in order up
+  // to the first it may reach, as a plain walk would; the ones it cannot reach are
+  // closed for its subtree. Past 64 polytopes, nothing is closed.
+  const bool few = count <= 64;
+  auto open = [&](const Aabb& box, std::uint64_t mask) -> std::uint64_t {
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint64_t bit = few ? std::uint64_t{1} << i : 0;
+      if (few && !(mask & bit)) continue;
+      if (mayReach(i, box)) return mask;
+      mask &= ~bit;
+    }
+    return 0;
+  };
+  const std::uint64_t all = few && count < 64 ? (std::uint64_t{1} << count) - 1 : ~std::uint64_t{0};
   bool reached = false;
-  shared.tree.query(
-      [&](const Aabb& box) {
-        for (std::size_t i = 0; i < count; ++i) {
-          if (mayReach(i, box)) return true;
-        }
-        return false;
-      },
-      [&](int t) {
-        if (patch.contains(t) || t == also_skip) return true;
-        const Aabb& box = shared.tree.box(t);
-        const Tri& f = mesh.triangles[t];
-        for (std::size_t i = 0; i < count && !reached; ++i) {
-          reached = mayReach(i, box) &&
-                    polytopes[i].triangleReachesInterior(mesh.vertices[f[0]], mesh.vertices[f[1]],
-                                                         mesh.vertices[f[2]]);
-        }
-        return !reached;
-      });
+  tree.queryMasked(patch.counted, all, open, [&](int t, std::uint64_t mask) {
+    if (patch.patch.contains(t) || t == also_skip) return true;
+    const Aabb& box = tree.box(t);
+    const Tri& f = mesh.triangles[t];
+    for (std::size_t i = 0; i < count && !reached; ++i) {
+      reached = (!few || (mask >> i & 1)) && mayReach(i, box) &&
+                polytopes[i].triangleReachesInterior(mesh.vertices[f[0]], mesh.vertices[f[1]],
+                                                     mesh.vertices[f[2]]);
+    }
+    return !reached;
+  });
   return reached;
 }
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Condition (2) of the decomposition: does a triangle outside a patch reach into a
 // convex region (the patch's hull, a probe prism, a tetrahedron of new hull)
-// shrunk by the tolerance? Walks the mesh's AABB tree, pruned by the region's
-// planes or by a few planes that contain it.
+// shrunk by the tolerance? Walks the region's tree (region_tree.h), pruned by the
+// convex region's planes or by a few planes that contain it.
 #pragma once
 
 #include <cstddef>
@@ -12,6 +12,7 @@
 #include "geometry/halfspace_polytope.h"
 #include "preprocess/decomposition_mesh.h"
 #include "preprocess/patch_polytope.h"
+#include "preprocess/region_tree.h"
 
 namespace sc::detail {
 
@@ -26,18 +27,26 @@ inline constexpr std::size_t kOwnPlanesUpTo = 64;
 /// tolerance lies in them shrunk by it: no triangle reaching it is pruned.
 std::vector<Plane> outerPlanes(const ConvexPolytope& poly);
 
-/// True when a triangle of `shared.mesh` outside `patch` (and other than
+/// The patch a test ignores, and whether it is the whole patch that `tree` counts
+/// (then the walk skips the subtrees it fills).
+struct PatchInTree {
+  const PatchRef& patch;
+  bool counted;
+};
+
+/// True when a triangle of `shared.mesh` outside the patch (and other than
 /// `also_skip`) reaches the polytope given by `planes`, shrunk by the tolerance;
-/// `bounds` encloses it. Non-empty `outer` planes contain it and prune the tree in
-/// its place.
-bool reachesInside(const SharedMesh& shared, const PatchRef& patch, std::vector<Plane> planes,
-                   const Aabb& bounds, int also_skip = -1, std::vector<Plane> outer = {});
+/// `bounds` encloses it and lies in the region `tree` covers. Non-empty `outer`
+/// planes contain it and prune the tree in its place.
+bool reachesInside(const SharedMesh& shared, const RegionTree& tree, PatchInTree patch,
+                   std::vector<Plane> planes, const Aabb& bounds, int also_skip = -1,
+                   std::vector<Plane> outer = {});
 
 /// reachesInside for several polytopes (each in `bounds`) in one walk of the tree:
 /// true when some triangle reaches one of them. A triangle is tested against a
 /// polytope only where its own box may reach it, so the answer is the same as
 /// one reachesInside per polytope.
-bool reachesAnyInside(const SharedMesh& shared, const PatchRef& patch,
+bool reachesAnyInside(const SharedMesh& shared, const RegionTree& tree, PatchInTree patch,
                       std::vector<HalfspacePolytope>& polytopes, const std::vector<Aabb>& bounds,
                       int also_skip);
 

@@ -24,7 +24,8 @@ Decomposer::Decomposer(const SharedMesh& shared, std::vector<int>& triangle_patc
       triangle_patch_(triangle_patch),
       state_(state),
       progress_(progress),
-      cancel_(cancel) {
+      cancel_(cancel),
+      region_tree_(shared) {
   const std::size_t n = mesh_.triangles.size();
   rank_.assign(n, -1);
   seen_.assign(n, -1);
@@ -74,6 +75,7 @@ bool Decomposer::canJoin(int t) const {
 void Decomposer::addFace(int t) {
   rank_[t] = static_cast<int>(faces_.size());
   faces_.push_back(t);
+  region_tree_.markPatch(t, 1);
   for (int k = 0; k < 3; ++k) {
     const int v = mesh_.triangles[t][k];
     if (in_patch_[v]) continue;
@@ -129,7 +131,10 @@ void Decomposer::enqueueNeighbours(int t) {
 }
 
 void Decomposer::truncate(int count) {
-  for (int i = count; i < static_cast<int>(faces_.size()); ++i) rank_[faces_[i]] = -1;
+  for (int i = count; i < static_cast<int>(faces_.size()); ++i) {
+    rank_[faces_[i]] = -1;
+    region_tree_.markPatch(faces_[i], -1);
+  }
   faces_.resize(count);
   const int keep = count > 0 ? verts_after_[count - 1] : 0;
   verts_after_.resize(count);
@@ -147,14 +152,16 @@ void Decomposer::rebuildFrontier() {
 
 Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
   const PatchRef patch{faces_, rank_, count};
+  // The tree counts all of faces_: it may skip the patch's subtrees only for all.
+  const PatchInTree in_tree{patch, count == static_cast<int>(faces_.size())};
   Result<PatchPolytope> built = buildPatchPolytope(mesh_, adjacency_, patch, tol_, mode);
   if (!built.ok() || count == 1) return built;  // one triangle is the surface itself
   const PatchPolytope& poly = built.value();
   // Small hulls have fewer planes than the outer bound: prune with their own.
   std::vector<Plane> outer;
   if (poly.planes.size() > kOwnPlanesUpTo) outer = outerPlanes(poly.polytope);
-  if (!poly.flat &&
-      reachesInside(shared_, patch, poly.planes, poly.polytope.bounds, -1, std::move(outer))) {
+  if (!poly.flat && reachesInside(shared_, region_tree_, in_tree, poly.planes, poly.polytope.bounds,
+                                  -1, std::move(outer))) {
     return Status(ErrorCode::InvalidGeometry, "patch: a triangle reaches into its hull");
   }
   for (const std::array<Plane, 5>& prism : poly.probes) {
@@ -162,7 +169,8 @@ Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
     const Vec3 depth = Vec3::Constant(kProbeDepth * tol_);
     bounds.min -= depth;
     bounds.max += depth;
-    if (reachesInside(shared_, patch, std::vector<Plane>(prism.begin(), prism.end()), bounds)) {
+    if (reachesInside(shared_, region_tree_, in_tree,
+                      std::vector<Plane>(prism.begin(), prism.end()), bounds)) {
       return Status(ErrorCode::InvalidGeometry, "patch: a triangle reaches under a pocket");
     }
   }
@@ -173,35 +181,40 @@ Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
 // qhull's hull. Should that disagree (rounding at the tolerance), the patch is
 // grown again from its seed with qhull throughout.
 void Decomposer::setVerified(const ConvexPolytope& hull) {
-  verified_corners_.clear();
-  verified_planes_.clear();
+  hull_corners_.clear();
+  hull_ids_.clear();
+  hull_planes_.clear();
+  hull_vertices_ = static_cast<int>(hull.vertices.size());
   for (const Tri& f : hull.faces) {
     const Vec3 &a = hull.vertices[f[0]], &b = hull.vertices[f[1]], &c = hull.vertices[f[2]];
     const Vec3 twice = (b - a).cross(c - a);
     if (!(twice.norm() > 0.0)) continue;
-    verified_corners_.push_back({a, b, c});
+    hull_corners_.push_back({a, b, c});
+    hull_ids_.push_back({hull.original[f[0]], hull.original[f[1]], hull.original[f[2]]});
     const Vec3 n = twice / twice.norm();
-    verified_planes_.push_back({n, n.dot(a)});
+    hull_planes_.push_back({n, n.dot(a)});
   }
 }
 
 // True when triangle t's new vertex would make the hull swallow another triangle:
-// for each verified face the vertex sees, the tetrahedron they span is in the new
+// for each hull face the vertex sees, the tetrahedron they span is in the new
 // hull. Finds most failures of condition (2) before the batch check does.
 bool Decomposer::swallows(int t) {
   const Tri& f = mesh_.triangles[t];
-  int fresh = -1;
+  fresh_ = -1;
+  visible_.clear();
   for (int k = 0; k < 3; ++k) {
-    if (!in_patch_[f[k]]) fresh = f[k];
+    if (!in_patch_[f[k]]) fresh_ = f[k];
   }
-  if (fresh < 0) return false;
-  const Vec3& v = mesh_.vertices[fresh];
+  if (fresh_ < 0) return false;
+  const Vec3& v = mesh_.vertices[fresh_];
   tetras_.clear();
   tetra_bounds_.clear();
-  for (std::size_t i = 0; i < verified_planes_.size(); ++i) {
-    const Plane& base = verified_planes_[i];
+  for (std::size_t i = 0; i < hull_planes_.size(); ++i) {
+    const Plane& base = hull_planes_[i];
     if (base.signedDistance(v) <= tol_) continue;
-    const std::array<Vec3, 3>& corner = verified_corners_[i];
+    visible_.push_back(static_cast<int>(i));
+    const std::array<Vec3, 3>& corner = hull_corners_[i];
     std::vector<Plane> tetra = {{-base.normal, -base.offset}};
     Aabb bounds;
     bounds.extend(v);
@@ -218,7 +231,77 @@ bool Decomposer::swallows(int t) {
   }
   // One walk of the tree for all of them: a vertex sees several faces of a large hull.
   const PatchRef patch{faces_, rank_, static_cast<int>(faces_.size())};
-  return !tetras_.empty() && reachesAnyInside(shared_, patch, tetras_, tetra_bounds_, t);
+  return !tetras_.empty() &&
+         reachesAnyInside(shared_, region_tree_, {patch, true}, tetras_, tetra_bounds_, t);
+}
+
+// Quickhull's step: the seen faces' edges that no other seen face shares (in the
+// other direction) are the horizon, and each makes a face with the new vertex. The
+// hull only guides the filter (condition (2) is checked on qhull's hull), so
+// rounding here costs at most a missed or a late ban. Rounding can make the seen
+// faces no disc; a closed triangulated hull has 2V - 4 faces, so a step that
+// would leave more than 2V is skipped: the hull stays as it was, its faces still
+// spanning patch vertices, and the filter's cost stays bounded.
+void Decomposer::extendHull() {
+  if (fresh_ < 0 || visible_.empty()) return;
+  const Vec3& v = mesh_.vertices[fresh_];
+  auto shared_edge = [&](int a, int b) {
+    for (int j : visible_) {
+      const std::array<int, 3>& ids = hull_ids_[j];
+      for (int k = 0; k < 3; ++k) {
+        if (ids[k] == b && ids[(k + 1) % 3] == a) return true;
+      }
+    }
+    return false;
+  };
+  horizon_.clear();
+  for (int i : visible_) {
+    for (int k = 0; k < 3; ++k) {
+      if (!shared_edge(hull_ids_[i][k], hull_ids_[i][(k + 1) % 3])) horizon_.push_back(3 * i + k);
+    }
+  }
+  const std::size_t faces = hull_planes_.size() - visible_.size() + horizon_.size();
+  if (faces > 2 * static_cast<std::size_t>(hull_vertices_ + 1)) return;
+  ++hull_vertices_;
+  cone_.clear();
+  for (int edge : horizon_) {
+    const int i = edge / 3, k = edge % 3;
+    const Vec3 p = hull_corners_[i][k], q = hull_corners_[i][(k + 1) % 3];
+    const Vec3 twice = (q - p).cross(v - p);
+    if (!(twice.norm() > 0.0)) continue;
+    const Vec3 n = twice / twice.norm();
+    cone_.push_back(
+        {{p, q, v}, {hull_ids_[i][k], hull_ids_[i][(k + 1) % 3], fresh_}, {n, n.dot(p)}});
+  }
+  replaceSeenFaces();
+}
+
+// The cone's faces take the seen faces' slots, then go last, or the seen faces
+// left over give way to the last faces (highest slot first, so that the last is
+// never one of them): no pass over the whole hull. The order of the faces does not
+// change any answer of the filter.
+void Decomposer::replaceSeenFaces() {
+  std::sort(visible_.begin(), visible_.end());
+  const std::size_t reused = std::min(visible_.size(), cone_.size());
+  for (std::size_t j = 0; j < reused; ++j) setHullFace(visible_[j], cone_[j]);
+  for (std::size_t j = reused; j < cone_.size(); ++j) {
+    hull_corners_.push_back(cone_[j].corners);
+    hull_ids_.push_back(cone_[j].ids);
+    hull_planes_.push_back(cone_[j].plane);
+  }
+  for (std::size_t j = visible_.size(); j-- > reused;) {
+    const std::size_t last = hull_planes_.size() - 1;
+    setHullFace(visible_[j], {hull_corners_[last], hull_ids_[last], hull_planes_[last]});
+    hull_corners_.pop_back();
+    hull_ids_.pop_back();
+    hull_planes_.pop_back();
+  }
+}
+
+void Decomposer::setHullFace(int slot, const HullFace& face) {
+  hull_corners_[slot] = face.corners;
+  hull_ids_[slot] = face.ids;
+  hull_planes_[slot] = face.plane;
 }
 
 Status Decomposer::growPatch(int seed, HullCheck mode) {
@@ -272,6 +355,7 @@ Status Decomposer::growPatch(int seed, HullCheck mode) {
         banned_[t] = serial_;
         continue;
       }
+      extendHull();
       addFace(t);
       if (static_cast<int>(faces_.size()) >= next_check) check();
     }
@@ -388,6 +472,8 @@ bool Decomposer::tryWholeSurface(std::vector<ConvexPolytope>& patches) {
 Status Decomposer::decompose(int region, RegionResult& out) {
   region_ = region;
   out_ = &out;
+  // Hulls, tetrahedra and probes lie in the region's box widened by the probes' depth.
+  region_tree_.build(region, (kProbeDepth + 1.0) * tol_);
   seeds_.clear();
   seed_scan_ = shared_.region_start[region];
   for (int seed = nextSeed(); seed >= 0; seed = nextSeed()) {

@@ -13,6 +13,7 @@
 #include "geometry/halfspace_polytope.h"
 #include "preprocess/decomposition_mesh.h"
 #include "preprocess/patch_polytope.h"
+#include "preprocess/region_tree.h"
 #include "smartcollision/model.h"
 
 namespace sc::detail {
@@ -86,6 +87,16 @@ class Decomposer {
   Result<PatchPolytope> evaluate(int count, HullCheck mode);
   void setVerified(const ConvexPolytope& hull);
   bool swallows(int t);
+  /// After swallows(t) was false and before t joins: the growing hull takes t's new
+  /// vertex (the faces it sees give way to a cone from it over their horizon).
+  void extendHull();
+  struct HullFace {
+    std::array<Vec3, 3> corners;
+    std::array<int, 3> ids;
+    Plane plane;
+  };
+  void replaceSeenFaces();
+  void setHullFace(int slot, const HullFace& face);
   void finishPatch(PatchPolytope patch);
   /// Triangle t and its reverse: the patch of one triangle, built directly for a
   /// triangle too thin for the ear tests.
@@ -111,6 +122,8 @@ class Decomposer {
 
   int region_ = -1;
   RegionResult* out_ = nullptr;
+  /// The triangles the current region's hulls can meet; counts the patch's faces.
+  RegionTree region_tree_;
   std::deque<int> seeds_;
   int seed_scan_ = 0;
 
@@ -127,10 +140,18 @@ class Decomposer {
   std::vector<VertexChunk> vertex_chunks_;
   std::vector<FaceChunk> face_chunks_;
   std::deque<int> frontier_;
-  /// Faces (corners and outward plane) of the last verified hull.
-  std::vector<std::array<Vec3, 3>> verified_corners_;
-  std::vector<Plane> verified_planes_;
-  /// swallows(): the tetrahedra of new hull over the verified faces a vertex sees.
+  /// Faces (corners, their vertex indices and outward plane) of the growing hull:
+  /// the last verified hull, extended by each vertex added since. Every corner is
+  /// a patch vertex, so each tetrahedron below lies in the patch's hull.
+  std::vector<std::array<Vec3, 3>> hull_corners_;
+  std::vector<std::array<int, 3>> hull_ids_;
+  std::vector<Plane> hull_planes_;
+  int hull_vertices_ = 0;
+  int fresh_ = -1;              ///< swallows(): the new vertex
+  std::vector<int> visible_;    ///< swallows(): the hull faces it sees
+  std::vector<int> horizon_;    ///< extendHull(): 3 * face + edge
+  std::vector<HullFace> cone_;  ///< extendHull(): the new faces
+  /// swallows(): the tetrahedra of new hull over the hull faces a vertex sees.
   std::vector<HalfspacePolytope> tetras_;
   std::vector<Aabb> tetra_bounds_;
 };

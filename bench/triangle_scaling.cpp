@@ -11,9 +11,10 @@
 //        triangle_scaling --preprocess-csv FILE [--max-triangles N] [--threads N]
 //                         [--series closed|soup|off]
 // The preprocessing series exits 1 when one of issue 18's targets that its cases
-// cover is missed (process CPU time, which on an idle machine is at least a
-// two-thread build's wall time): the closed torus from 40k to 1M at most 2.3x per
-// doubling on average, bunny00 <= 1 s, 1M closed <= 30 s and <= 1 GiB peak, 1M
+// cover is missed: the closed torus from 40k to 1M at most 2.3x per doubling on
+// average (process CPU time, which a loaded machine disturbs least); the time a user
+// waits on a 2-core machine (wall time of the --threads build, default every core;
+// measure on an idle machine): bunny00 <= 1 s, 1M closed <= 30 s and <= 1 GiB peak, 1M
 // soup <= 10 s.
 #include <Eigen/Geometry>
 
@@ -360,7 +361,7 @@ int runOneCase(const std::string& spec, int threads) {
 struct PrepRow {
   std::string spec;
   long triangles = 0, peak_kb = 0;
-  double cpu_s = 0.0;
+  double wall_s = 0.0, cpu_s = 0.0;
 };
 
 /// Issue 18's targets over the rows of this run; a target whose cases did not run
@@ -397,12 +398,12 @@ bool checkPreprocessTargets(const std::vector<PrepRow>& rows) {
   report("closed torus 40k to 1M, CPU time per doubling (mean)", steps == 4,
          std::exp(log_sum / std::max(1, steps)), 2.3, "x");
   const PrepRow* bunny = find("off:bunny00");
-  report("bunny00 CPU time", bunny, bunny ? bunny->cpu_s : 0.0, 1.0, "s");
+  report("bunny00 wall time", bunny, bunny ? bunny->wall_s : 0.0, 1.0, "s");
   const PrepRow* closed = find("closed:1000:500");
-  report("1M closed CPU time", closed, closed ? closed->cpu_s : 0.0, 30.0, "s");
+  report("1M closed wall time", closed, closed ? closed->wall_s : 0.0, 30.0, "s");
   report("1M closed peak", closed, closed ? closed->peak_kb / 1024.0 : 0.0, 1024.0, "MiB");
   const PrepRow* soup = find("soup:1000:500");
-  report("1M soup CPU time", soup, soup ? soup->cpu_s : 0.0, 10.0, "s");
+  report("1M soup wall time", soup, soup ? soup->wall_s : 0.0, 10.0, "s");
   return ok;
 }
 
@@ -428,7 +429,8 @@ int runPreprocessSeries(const char* self, const Options& o) {
     line[std::strcspn(line, "\n")] = 0;
     PrepRow row;
     row.spec = c.spec;
-    std::sscanf(line, "%ld,%*f,%lf,%*f,%*d,%ld", &row.triangles, &row.cpu_s, &row.peak_kb);
+    std::sscanf(line, "%ld,%lf,%lf,%*f,%*d,%ld", &row.triangles, &row.wall_s, &row.cpu_s,
+                &row.peak_kb);
     rows.push_back(row);
     std::fprintf(csv, "%s,%s,%s,%d\n", c.series.c_str(), c.spec.c_str(), line, o.threads);
     std::fflush(csv);

@@ -16,26 +16,12 @@
 #include "penetration/result_invariants.h"
 #include "smartcollision/collision.h"
 #include "support/brute_force.h"
+#include "support/placements.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
 namespace sc::test {
 namespace {
-
-ModelPtr modelOf(const detail::ConvexPolytope& poly) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, meshOf(poly));
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  if (!piece.ok()) return nullptr;
-  EXPECT_TRUE(piece.value()->stats().convex);
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
-Placement placementOf(const Mat3& r, const Vec3& center) {
-  Placement p;
-  p.orientation = Quat(r);
-  p.world_center = center;
-  return p;
-}
 
 /// The general path of one direction first seen intersecting: initial resolution,
 /// then the proxy from the free pose to the goal; later goals as on any frame.
@@ -83,7 +69,7 @@ void checkPair(const detail::ConvexPolytope& a, const detail::ConvexPolytope& b,
                Tally& tally) {
   const ExactDepth exact = exactPenetrationDepth(a, pa.worldFromLocal(), b, pb.worldFromLocal());
   if (!(exact.depth > 0.0)) return;
-  const ModelPtr ma = modelOf(a), mb = modelOf(b);
+  const ModelPtr ma = convexModel(a), mb = convexModel(b);
   ASSERT_TRUE(ma && mb);
   const Part part_a{ma.get(), Rigid(), 1}, part_b{mb.get(), Rigid(), 2};
   SceneSettings settings;
@@ -178,7 +164,7 @@ TEST(ConvexFastPath, TouchingAndFreeModeTakeTheGeneralPath) {
   // Touching faces have no depth to resolve; Free turns the proxy, which the fast
   // path does not: both report what the general path reports.
   const detail::ConvexPolytope box = polytopeFromMesh(boxMesh(Vec3(1, 1, 1)));
-  const ModelPtr m = modelOf(box);
+  const ModelPtr m = convexModel(box);
   const Part pa{m.get(), Rigid(), 1}, pb{m.get(), Rigid(), 2};
   SceneSettings settings;
   settings.resolve_initial_intersection = true;

@@ -15,26 +15,12 @@
 #include "penetration/proxy_tracker.h"
 #include "penetration/result_invariants.h"
 #include "smartcollision/collision.h"
+#include "support/placements.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
 namespace sc::test {
 namespace {
-
-ModelPtr modelOf(const detail::ConvexPolytope& poly) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, meshOf(poly));
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  if (!piece.ok()) return nullptr;
-  EXPECT_TRUE(piece.value()->stats().convex);
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
-Placement placementOf(const Mat3& r, const Vec3& center) {
-  Placement p;
-  p.orientation = Quat(r);
-  p.world_center = center;
-  return p;
-}
 
 /// One direction's tracking state: the general path (every update through the
 /// query and the proxy) or the convex one (trackConvexPair, the general path only
@@ -171,7 +157,7 @@ TEST(ConvexFrames, RandomPathsEqualTheGeneralPath) {
     const double size = logUniform(rng, 1e-2, 1e2);
     const ConvexShape sa = randomConvexShape(rng, size);
     const ConvexShape sb = randomConvexShape(rng, size * uniform(rng, 0.5, 2.0));
-    const ModelPtr a = modelOf(sa.poly), b = modelOf(sb.poly);
+    const ModelPtr a = convexModel(sa.poly), b = convexModel(sb.poly);
     ASSERT_TRUE(a && b);
     const Vec3 shift = i % 5 == 0 ? Vec3(size * 1e2 * randomDirection(rng)) : Vec3::Zero();
     const Placement pb = placementOf(randomRotation(rng).toRotationMatrix(), shift);

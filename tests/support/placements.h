@@ -36,6 +36,11 @@ inline Placement placementOf(const Quat& q, const Vec3& center) {
   return p;
 }
 
+/// The same with the orientation as a rotation matrix.
+inline Placement placementOf(const Mat3& r, const Vec3& center) {
+  return placementOf(Quat(r), center);
+}
+
 /// q and -q are the same rotation.
 inline double quatDistance(const Quat& a, const Quat& b) {
   return std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());

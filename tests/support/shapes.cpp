@@ -34,6 +34,14 @@ ModelPtr boxModel(const Vec3& half_extents) {
   return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
 }
 
+ModelPtr convexModel(const detail::ConvexPolytope& poly) {
+  auto piece = buildPiece(ModelKind::ClosedPolyhedron, meshOf(poly));
+  EXPECT_TRUE(piece.ok()) << piece.status().message();
+  if (!piece.ok()) return nullptr;
+  EXPECT_TRUE(piece.value()->stats().convex);
+  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
+}
+
 namespace {
 
 /// Orients the four triangles of a tetrahedron outward.

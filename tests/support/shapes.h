@@ -62,6 +62,9 @@ detail::ConvexPolytope hullOf(const std::vector<Vec3>& points,
                               const MeshData* real_faces = nullptr);
 /// The polytope's faces as a mesh over its own vertex array.
 MeshData meshOf(const detail::ConvexPolytope& poly);
+/// A one-piece closed-polyhedron model of the polytope, which the build must find
+/// convex (a test failure otherwise); null if the piece cannot be built.
+ModelPtr convexModel(const detail::ConvexPolytope& poly);
 
 /// A random convex shape for property tests: its polytope and the points its
 /// `original` indices refer to.

@@ -261,21 +261,8 @@ LeafContact GroupPairQuery::evaluate(const NodePair& p, const Rigid& o_from_piec
   const GjkResult r =
       gjkDistance(ts.data->patches[tn.polytope], o_from_piece, os.data->patches[on.polytope],
                   os.group_from_piece, settings, cache != nullptr ? *cache : cacheOf(p));
-  LeafContact c;
-  c.t_leaf = ts.first_leaf + tn.polytope;
-  c.o_leaf = os.first_leaf + on.polytope;
   beyond = r.status == GjkStatus::BeyondMaxDistance;
-  c.intersecting = r.status == GjkStatus::Intersecting;
-  c.gap = c.intersecting ? 0.0 : (beyond ? r.lower_bound : r.distance);
-  c.normal = r.normal;
-  c.point_t = r.point_a;
-  c.point_o = r.point_b;
-  c.simplex_count = r.count;
-  for (int i = 0; i < 4; ++i) {
-    c.simplex_t[i] = r.a[i];
-    c.simplex_o[i] = r.b[i];
-  }
-  return c;
+  return leafContactOf(r, ts.first_leaf + tn.polytope, os.first_leaf + on.polytope);
 }
 
 NodePair GroupPairQuery::leafPair(int t_leaf, int o_leaf) const {

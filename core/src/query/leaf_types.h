@@ -5,6 +5,7 @@
 
 #include "geometry/convex_polytope.h"
 #include "geometry/math_util.h"
+#include "query/gjk.h"
 
 namespace sc::detail {
 
@@ -42,6 +43,26 @@ struct LeafContact {
   int simplex_t[4] = {-1, -1, -1, -1};
   int simplex_o[4] = {-1, -1, -1, -1};
 };
+
+/// A leaf pair's GJK result as a contact: its closest points, normal and simplex;
+/// the gap is GJK's lower bound when the pair lies beyond the query's max distance.
+inline LeafContact leafContactOf(const GjkResult& r, int t_leaf, int o_leaf) {
+  LeafContact c;
+  c.t_leaf = t_leaf;
+  c.o_leaf = o_leaf;
+  c.intersecting = r.status == GjkStatus::Intersecting;
+  const bool beyond = r.status == GjkStatus::BeyondMaxDistance;
+  c.gap = c.intersecting ? 0.0 : (beyond ? r.lower_bound : r.distance);
+  c.normal = r.normal;
+  c.point_t = r.point_a;
+  c.point_o = r.point_b;
+  c.simplex_count = r.count;
+  for (int i = 0; i < 4; ++i) {
+    c.simplex_t[i] = r.a[i];
+    c.simplex_o[i] = r.b[i];
+  }
+  return c;
+}
 
 /// Work done by the last traversal (for tests and benchmarks).
 struct TraversalCounters {

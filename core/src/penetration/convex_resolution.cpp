@@ -92,19 +92,8 @@ struct ConvexPair {
     gs.max_distance = max;
     const GjkResult r =
         gjkDistance(*t.poly, pose * t.group_from_leaf, *o.poly, o.group_from_leaf, gs, cache);
-    LeafContact c;
-    c.t_leaf = 0;
-    c.o_leaf = 0;
     beyond = r.status == GjkStatus::BeyondMaxDistance;
-    c.intersecting = r.status == GjkStatus::Intersecting;
-    c.gap = c.intersecting ? 0.0 : (beyond ? r.lower_bound : r.distance);
-    c.normal = r.normal;
-    c.point_t = r.point_a;
-    c.point_o = r.point_b;
-    c.simplex_count = r.count;
-    std::copy(r.a, r.a + 4, c.simplex_t);
-    std::copy(r.b, r.b + 4, c.simplex_o);
-    return c;
+    return leafContactOf(r, 0, 0);
   }
   /// Min over the target of n . x less max over the opponent (n unit, opponent frame).
   double separationAlong(const Rigid& pose, const Vec3& n) const {
@@ -227,20 +216,10 @@ bool reportPenetration(const ConvexPair& pair, const Rigid& proxy, const Probe& 
     const Vec3 z = projectOnto(goal * center, p.n, p.b);
     if ((z - y).norm() <= settings.tolerance) contact_pose = poseAt(proxy.rotation, center, z);
   }
-  const Vec3 tpdv = goal * center - contact_pose * center;
-  const Vec3 rpdv = contact_pose.rotation == goal.rotation
-                        ? Vec3::Zero()
-                        : rotationVector(goal.rotation * contact_pose.rotation.transpose());
-  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) {  // the goal only touches
+  if (!reportDepth(goal, contact_pose, center, out)) {  // the goal only touches
     if (p.contact) touch_normal = p.n;
     return false;
   }
-  out.code = ErrorCode::Ok;
-  out.penetrating = true;
-  out.contact_pose = contact_pose;
-  out.tpdv = tpdv;
-  out.rpdv = rpdv;
-  out.distance = -tpdv.norm();
   out.lagging = ran_out || !p.contact;
   // A lagging proxy with nothing within the tolerance: its closest points name
   // where the contact will be.

@@ -225,6 +225,23 @@ bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& ce
   return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
 }
 
+bool reportDepth(const Rigid& goal, const Rigid& contact_pose, const Vec3& center,
+                 ProxyOutcome& out) {
+  const Vec3 tpdv = goal * center - contact_pose * center;
+  // Exactly zero when the proxy follows the goal's rotation (Input mode).
+  const Vec3 rpdv = contact_pose.rotation == goal.rotation
+                        ? Vec3::Zero()
+                        : rotationVector(goal.rotation * contact_pose.rotation.transpose());
+  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) return false;
+  out.code = ErrorCode::Ok;
+  out.penetrating = true;
+  out.contact_pose = contact_pose;
+  out.tpdv = tpdv;
+  out.rpdv = rpdv;
+  out.distance = -tpdv.norm();
+  return true;
+}
+
 bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                                      const PairSettings& settings, ProxyOutcome& out) {
   // Depth against the exact planes (zero skin): unbiased by the skin. A proxy that
@@ -237,21 +254,10 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, c
   const int main = turned ? projectTwist(query, goal, center, settings, contact_pose, normal)
                           : projectTranslation(query, goal, center, settings, contact_pose, normal);
   if (main == kGoalTouches) return false;
-  const Vec3 tpdv = goal * center - contact_pose * center;
-  // Exactly zero when the proxy follows the goal's rotation (Input mode).
-  const Vec3 rpdv = contact_pose.rotation == goal.rotation
-                        ? Vec3::Zero()
-                        : rotationVector(goal.rotation * contact_pose.rotation.transpose());
-  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) {  // the goal only touches
+  if (!reportDepth(goal, contact_pose, center, out)) {  // the goal only touches
     if (main >= 0) touch_normal_ = normal;
     return false;
   }
-  out.code = ErrorCode::Ok;
-  out.penetrating = true;
-  out.contact_pose = contact_pose;
-  out.tpdv = tpdv;
-  out.rpdv = rpdv;
-  out.distance = -tpdv.norm();
   out.lagging = ran_out_ || main < 0;
   if (main >= 0) {
     out.contact = contacts_[main];

@@ -26,6 +26,12 @@ struct ProxyOutcome {
   bool lagging = false;  ///< penetrating, but the iterations ran out before the proxy settled
 };
 
+/// The depth of `goal` against a proxy at `contact_pose` (centre `center`): fills the
+/// outcome's code, penetration vectors, contact pose and distance, and returns true;
+/// false, leaving `out` alone, when the goal only touches (both vectors exactly 0).
+bool reportDepth(const Rigid& goal, const Rigid& contact_pose, const Vec3& center,
+                 ProxyOutcome& out);
+
 /// Outline of one update (design.md section 4):
 ///   1. First sight: intersecting -> InvalidInitialTransformation; else start here.
 ///   2. Orient the proxy: Input follows the goal's rotation (and turns as in Free,

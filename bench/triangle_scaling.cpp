@@ -255,18 +255,42 @@ struct Options {
   std::string series;          ///< preprocessing: "closed", "soup" or "off" only; empty: all
 };
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--csv")) o.csv = argv[i + 1];
-    if (!std::strcmp(argv[i], "--max-triangles")) o.max_triangles = std::atoi(argv[i + 1]);
-    if (!std::strcmp(argv[i], "--steps")) o.steps = std::atoi(argv[i + 1]);
-    if (!std::strcmp(argv[i], "--preprocess-csv")) o.preprocess_csv = argv[i + 1];
-    if (!std::strcmp(argv[i], "--one-case")) o.one_case = argv[i + 1];
-    if (!std::strcmp(argv[i], "--threads")) o.threads = std::atoi(argv[i + 1]);
-    if (!std::strcmp(argv[i], "--series")) o.series = argv[i + 1];
+/// False (after a usage message) on an unknown option or one without its value, so
+/// that a mistyped option or --help does not start an hour of measuring.
+bool parse(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; i += 2) {
+    const char* key = argv[i];
+    const char* value = i + 1 < argc ? argv[i + 1] : nullptr;
+    bool known = true;
+    if (value == nullptr) {
+      known = false;
+    } else if (!std::strcmp(key, "--csv")) {
+      o.csv = value;
+    } else if (!std::strcmp(key, "--max-triangles")) {
+      o.max_triangles = std::atoi(value);
+    } else if (!std::strcmp(key, "--steps")) {
+      o.steps = std::atoi(value);
+    } else if (!std::strcmp(key, "--preprocess-csv")) {
+      o.preprocess_csv = value;
+    } else if (!std::strcmp(key, "--one-case")) {
+      o.one_case = value;
+    } else if (!std::strcmp(key, "--threads")) {
+      o.threads = std::atoi(value);
+    } else if (!std::strcmp(key, "--series")) {
+      o.series = value;
+    } else {
+      known = false;
+    }
+    if (!known) {
+      std::fprintf(stderr,
+                   "usage: %s [--csv FILE] [--max-triangles N] [--steps N]\n"
+                   "       %s --preprocess-csv FILE [--max-triangles N] [--threads N] "
+                   "[--series closed|soup|off]\n",
+                   argv[0], argv[0]);
+      return false;
+    }
   }
-  return o;
+  return true;
 }
 
 // ---- Preprocessing alone, one fresh process per model ----
@@ -483,7 +507,8 @@ std::vector<std::pair<Row, sc::MeshData>> models(int max_triangles) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
+  Options options;
+  if (!parse(argc, argv, options)) return 2;
   if (!options.one_case.empty()) return runOneCase(options.one_case, options.threads);
   if (!options.preprocess_csv.empty()) return runPreprocessSeries(argv[0], options);
   // First use pays one-time set-up (allocator, thread-local scratch): not the model's.

@@ -278,13 +278,18 @@ int ProxyTracker::projectTranslation(GroupPairQuery& query, const Rigid& goal, c
   buildRows(query, proxy_);
   const Vec3 rc = proxy_.rotation * center;
   const int m = static_cast<int>(rows_.size());
-  MatX a(m, 3);
-  VecX b(m);
+  MatX& a = twist_.slide_a;  // the slide's kept arrays: no allocation per report
+  VecX& b = twist_.slide_b;
+  if (a.rows() < m) {
+    a.resize(2 * m, 3);
+    b.resize(2 * m);
+  }
   for (int i = 0; i < m; ++i) {
     a.row(i) = rows_[i].normal.transpose();
     b[i] = rows_[i].offset + rows_[i].normal.dot(rc);
   }
-  const QpResult qp = solveContactQp(goal * center, Vec3::Ones(), a, b);
+  QpWork& qp = twist_.slide_qp;
+  solveContactQp(goal * center, Vec3::Ones(), a.topRows(m), b.head(m), qp);
   if (qp.feasible && (Vec3(qp.z) - y).norm() <= settings.tolerance)
     contact_pose = poseAt(proxy_.rotation, center, qp.z);
   // Main contact: the most loaded row, else the first.

@@ -8,6 +8,13 @@ namespace sc::detail {
 HalfspacePolytope::HalfspacePolytope(std::vector<Plane> planes, double depth)
     : planes_(std::move(planes)), depth_(depth) {}
 
+void HalfspacePolytope::reset(const Plane* first, int count, double depth) {
+  planes_.assign(first, first + count);
+  depth_ = depth;
+  hint_ = 0;
+  triangle_hint_ = 0;
+}
+
 bool HalfspacePolytope::separatedBy(int plane, const Vec3& centre, const Vec3& half) const {
   const Plane& p = planes_[plane];
   const double lowest = p.normal.dot(centre) - p.normal.cwiseAbs().dot(half);

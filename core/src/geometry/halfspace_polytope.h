@@ -23,6 +23,10 @@ class HalfspacePolytope {
  public:
   HalfspacePolytope(std::vector<Plane> planes, double depth);
 
+  /// Becomes the polytope of planes [first, first + count) at `depth`, keeping its
+  /// arrays' capacity: a loop that makes many small polytopes allocates once.
+  void reset(const Plane* first, int count, double depth);
+
   /// False when some plane has the whole box outside the shrunk polytope.
   bool boxMayReachInterior(const Aabb& box);
   /// True when some point of triangle abc lies in the shrunk polytope (closed).

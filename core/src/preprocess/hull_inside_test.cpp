@@ -102,7 +102,7 @@ bool reachesAnyInside(const SharedMesh& shared, const RegionTree& tree, PatchInT
                       std::vector<HalfspacePolytope>& polytopes, const std::vector<Aabb>& bounds,
                       int also_skip) {
   const MeshData& mesh = shared.mesh;
-  const std::size_t count = polytopes.size();
+  const std::size_t count = bounds.size();  // polytopes may hold spares beyond it
   auto mayReach = [&](std::size_t i, const Aabb& box) {
     return boxesOverlap(box, bounds[i]) && polytopes[i].boxMayReachInterior(box);
   };

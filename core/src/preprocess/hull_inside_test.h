@@ -42,7 +42,8 @@ bool reachesInside(const SharedMesh& shared, const RegionTree& tree, PatchInTree
                    std::vector<Plane> planes, const Aabb& bounds, int also_skip = -1,
                    std::vector<Plane> outer = {});
 
-/// reachesInside for several polytopes (each in `bounds`) in one walk of the tree:
+/// reachesInside for several polytopes (the first bounds.size() of `polytopes`, each
+/// in its bounds) in one walk of the tree:
 /// true when some triangle reaches one of them. A triangle is tested against a
 /// polytope only where its own box may reach it, so the answer is the same as
 /// one reachesInside per polytope.

@@ -208,14 +208,14 @@ bool Decomposer::swallows(int t) {
   }
   if (fresh_ < 0) return false;
   const Vec3& v = mesh_.vertices[fresh_];
-  tetras_.clear();
-  tetra_bounds_.clear();
+  tetra_bounds_.clear();  // its size is the tetrahedra's count; tetras_ keeps spares
   for (std::size_t i = 0; i < hull_planes_.size(); ++i) {
     const Plane& base = hull_planes_[i];
     if (base.signedDistance(v) <= tol_) continue;
     visible_.push_back(static_cast<int>(i));
     const std::array<Vec3, 3>& corner = hull_corners_[i];
-    std::vector<Plane> tetra = {{-base.normal, -base.offset}};
+    std::array<Plane, 4> tetra;
+    tetra[0] = {-base.normal, -base.offset};
     Aabb bounds;
     bounds.extend(v);
     for (int k = 0; k < 3; ++k) {
@@ -224,14 +224,15 @@ bool Decomposer::swallows(int t) {
       bounds.extend(p);
       Vec3 n = normalizedOr((q - p).cross(v - p), Vec3::Zero());
       if (n.dot(corner[(k + 2) % 3] - p) > 0.0) n = -n;
-      tetra.push_back({n, n.dot(p)});
+      tetra[static_cast<std::size_t>(k) + 1] = {n, n.dot(p)};
     }
-    tetras_.emplace_back(std::move(tetra), tol_);
+    if (tetras_.size() == tetra_bounds_.size()) tetras_.emplace_back(std::vector<Plane>{}, tol_);
+    tetras_[tetra_bounds_.size()].reset(tetra.data(), 4, tol_);
     tetra_bounds_.push_back(bounds);
   }
   // One walk of the tree for all of them: a vertex sees several faces of a large hull.
   const PatchRef patch{faces_, rank_, static_cast<int>(faces_.size())};
-  return !tetras_.empty() &&
+  return !tetra_bounds_.empty() &&
          reachesAnyInside(shared_, region_tree_, {patch, true}, tetras_, tetra_bounds_, t);
 }
 

@@ -358,6 +358,7 @@ Status Decomposer::growPatch(int seed, HullCheck mode) {
       }
       extendHull();
       addFace(t);
+      if (static_cast<int>(faces_.size()) >= kMaxPatchTriangles) frontier_.clear();
       if (static_cast<int>(faces_.size()) >= next_check) check();
     }
     if (static_cast<int>(faces_.size()) == verified) break;

@@ -6,6 +6,7 @@
 #include "preprocess/convex_decomposition.h"
 
 #include "geometry/triangle_adjacency.h"
+#include "preprocess/patch_growth.h"
 #include "preprocess/patch_polytope.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "sc_support/off_mesh.h"
+#include "sc_support/sample_meshes.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -448,6 +450,35 @@ TEST(OffReader, RejectsMalformedFiles) {
   const Result<MeshData> missing = support::readOff("/nonexistent/mesh.off");
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.status().code(), ErrorCode::File);
+}
+
+// Patches stop growing at kMaxPatchTriangles (large patches that keep failing their
+// checks made the cost per triangle grow with the mesh), and the capped patches still
+// partition the surface; a convex piece stays one patch whatever its size.
+TEST(ConvexDecomposition, PatchesStopAtTheCapAndStillPartitionTheSurface) {
+  const MeshData torus = samples::torusMesh(1.0, 0.3, 150, 75);
+  const Decomposition d = decompose(torus);
+  std::vector<int> size(d.patches.size(), 0);
+  for (int p : d.triangle_patch) ++size[static_cast<std::size_t>(p)];
+  const int largest = *std::max_element(size.begin(), size.end());
+  EXPECT_LE(largest, kMaxPatchTriangles);
+  EXPECT_GE(largest, kMaxPatchTriangles / 2);  // the convex band's patches reach it
+  std::vector<int> seen(torus.triangles.size(), 0);
+  for (std::size_t p = 0; p < d.patches.size(); ++p) {
+    // A hull face may equal a triangle of another patch: counted there.
+    for (int t : d.patches[p].face_source) {
+      if (t >= 0 && d.triangle_patch[static_cast<std::size_t>(t)] == static_cast<int>(p))
+        ++seen[static_cast<std::size_t>(t)];
+    }
+  }
+  for (std::size_t t = 0; t < seen.size(); ++t) EXPECT_EQ(seen[t], 1) << "triangle " << t;
+
+  test::Rng rng(5);
+  std::vector<Vec3> on_sphere;
+  for (int i = 0; i < 600; ++i) on_sphere.push_back(test::randomDirection(rng));
+  const MeshData ball = test::meshOf(test::hullOf(on_sphere));
+  ASSERT_GT(ball.triangles.size(), 2u * kMaxPatchTriangles);
+  EXPECT_EQ(decompose(ball).patches.size(), 1u);
 }
 
 }  // namespace

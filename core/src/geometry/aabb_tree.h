@@ -9,6 +9,11 @@
 
 namespace sc::detail {
 
+/// True when the boxes overlap (touching counts).
+inline bool boxesOverlap(const Aabb& a, const Aabb& b) {
+  return !(a.min.array() > b.max.array()).any() && !(a.max.array() < b.min.array()).any();
+}
+
 class AabbTree {
  public:
   /// Builds a binary tree by median splits along the longest axis of the box

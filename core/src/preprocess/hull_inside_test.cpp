@@ -9,10 +9,6 @@
 namespace sc::detail {
 namespace {
 
-bool boxesOverlap(const Aabb& a, const Aabb& b) {
-  return !(a.min.array() > b.max.array()).any() && !(a.max.array() < b.min.array()).any();
-}
-
 /// Normals of the outer planes: the 3 axes, 6 face and 4 body diagonals of a cube.
 const std::array<Vec3, 13>& outerDirections() {
   static const std::array<Vec3, 13> directions = [] {
@@ -77,13 +73,7 @@ bool reachesInside(const SharedMesh& shared, const RegionTree& tree, PatchInTree
   bool reached = false;
   tree.query(
       patch.counted,
-      [&](const Aabb& box) {
-        if ((box.min.array() > bounds.max.array()).any() ||
-            (box.max.array() < bounds.min.array()).any()) {
-          return false;
-        }
-        return filter.boxMayReachInterior(box);
-      },
+      [&](const Aabb& box) { return boxesOverlap(box, bounds) && filter.boxMayReachInterior(box); },
       [&](int t) {
         if (patch.patch.contains(t) || t == also_skip) return true;
         if (pruned && !prune.boxMayReachInterior(tree.box(t))) return true;

@@ -19,19 +19,11 @@ void RegionTree::build(int region, double margin) {
   reach.max += Vec3::Constant(margin);
   items_.clear();
   nodes_.clear();
-  shared_.tree.query(
-      [&](const Aabb& box) {
-        return !(box.min.array() > reach.max.array()).any() &&
-               !(box.max.array() < reach.min.array()).any();
-      },
-      [&](int t) {
-        const Aabb& box = shared_.tree.box(t);
-        if (!(box.min.array() > reach.max.array()).any() &&
-            !(box.max.array() < reach.min.array()).any()) {
-          items_.push_back(t);
-        }
-        return true;
-      });
+  shared_.tree.query([&](const Aabb& box) { return boxesOverlap(box, reach); },
+                     [&](int t) {
+                       if (boxesOverlap(shared_.tree.box(t), reach)) items_.push_back(t);
+                       return true;
+                     });
   if (items_.empty()) return;
   // Sorted, so the tree depends on the mesh alone, not on the shared tree's order.
   std::sort(items_.begin(), items_.end());

@@ -61,24 +61,10 @@ class RegionTree {
 
 template <class Descend, class Visit>
 bool RegionTree::query(bool skip_patch, Descend&& descend, Visit&& visit) const {
-  if (nodes_.empty()) return true;
-  int stack[kMaxDepth + 1];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (skip_patch && node.in_patch == node.size) continue;
-    if (!descend(node.box)) continue;
-    if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) {
-        if (!visit(items_[i])) return false;
-      }
-    } else {
-      stack[top++] = node.first + 1;
-      stack[top++] = node.first;
-    }
-  }
-  return true;
+  // One test: queryMasked with a single bit.
+  return queryMasked(
+      skip_patch, 1, [&](const Aabb& box, std::uint64_t) -> std::uint64_t { return descend(box); },
+      [&](int t, std::uint64_t) { return visit(t); });
 }
 
 template <class Descend, class Visit>

@@ -121,6 +121,10 @@ class Builder {
     bvh_.hulls.resize(leaves_.size() - 1);
     inner_total_ = n - 1;
     split(0, n, 0);
+    // The split's arrays are done with: freed before the hulls, whose last levels
+    // are the build's peak (28 bytes per leaf).
+    std::vector<int>().swap(order_);
+    std::vector<Vec3>().swap(centres_);
     buildHulls();
     finishHullBvh(leaves_, bvh_);
     return std::move(bvh_);

@@ -93,7 +93,7 @@ ConvexPolytope flatHull(const std::vector<Vec3>& points, const std::vector<int>&
 /// its support points (vertices, adjacency) and bounds; the source of every face
 /// is -1 (virtual), which an absent face_source also says, and the vertex-face
 /// lists serve the leaves' features only. Faces stay: the cache file stores them
-/// and a load rebuilds the adjacency from them. About a fifth of a soup's memory.
+/// and a load rebuilds the adjacency from them. About a tenth of a soup's memory.
 void releaseUnread(ConvexPolytope& hull) {
   std::vector<int>().swap(hull.face_source);
   std::vector<int>().swap(hull.vertex_face_start);

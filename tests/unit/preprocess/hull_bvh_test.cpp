@@ -192,7 +192,7 @@ TEST(HullBvh, LeavesOfADecomposedPieceArePatches) {
 
 // Inner hulls keep what the traversal reads of them (vertices, faces, adjacency),
 // not face sources (all virtual) or vertex-face lists, built or loaded: those were
-// a fifth of a soup's memory.
+// a tenth of a soup's memory.
 TEST(HullBvh, InnerHullsKeepOnlyWhatTheTraversalReads) {
   MeshData mesh;
   ASSERT_NO_FATAL_FAILURE(mesh = test::loadTestMesh("elephant"));

@@ -376,6 +376,9 @@ const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& dat
   }
   if (!getPolytopes(r, data.mesh, bvh.hulls) || !r.done()) return malformed;
   finalizeAll(patches, bvh.hulls, threads);
+  if (data.kind == ModelKind::TriangleSoup) {
+    for (ConvexPolytope& leaf : patches) dropSoupLeafFaceLists(leaf);
+  }
   if (!finishHullBvh(patches, bvh)) return "its hierarchy is not a tree over its leaves";
   if (const char* problem = contentProblem(data.mesh, patches, bvh)) return problem;
   data.patches = std::move(patches);

@@ -166,6 +166,8 @@ class GroupPairQuery {
   /// The pending rebuild's first node pairs into `heap`: from front_ when it serves,
   /// else from the roots.
   void seedPendingNear(ContactsPolicy& policy, const Rigid& o_from_t, std::vector<NodePair>& heap);
+  /// The pending rebuild, given up before its end, leaves its partition as the front.
+  void frontFromPending();
   /// Runs the pending rebuild for a while and installs it once done. With `finish`
   /// (the kept pairs no longer cover o_from_t) it runs only as far as o_from_t needs
   /// and installs what it found, going on afterwards. Dropped when it no longer

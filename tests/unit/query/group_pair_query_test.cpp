@@ -457,6 +457,42 @@ TEST_F(GroupPairQueryTest, ContactsNearRebuiltFromTheFrontEqualTraversalsFromThe
               steps, with_contacts, near.frontRebuilds());
 }
 
+// Slides broken by moves of one to six times the rebuild's reach (a proxy's slide
+// iterations after a jump): a rebuild starts from the last front, its bounds lowered
+// by the motion and raised again by the node spheres at the new pose, or from what a
+// rebuild given up on the way left; the pairs are a full traversal's throughout.
+TEST_F(GroupPairQueryTest, ContactsNearAfterLongMovesEqualTraversalsFromTheRoots) {
+  GroupPairQuery near, plain;
+  near.bind(target_, opponent_);
+  plain.bind(target_, opponent_);
+  test::Rng rng(67);
+  const double threshold = 0.01, margin = 0.02, reach = threshold + margin;
+  int steps = 0, with_contacts = 0, long_moves = 0, served_after_long_moves = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run) {
+    Rigid pose = randomPose(rng, 0.5);
+    for (int k = 0; k < 60; ++k, ++steps) {
+      SCOPED_TRACE(k);
+      const bool long_move = k % 4 == 3;
+      const double length = long_move ? test::uniform(rng, reach, 6.0 * reach) : 0.003;
+      pose.translation += length * test::randomDirection(rng);
+      const int served = near.frontRebuilds();
+      std::vector<LeafContact> got, want;
+      near.contactsNear(pose, threshold, margin, got);
+      plain.contacts(pose, threshold, want);
+      ASSERT_NO_FATAL_FAILURE(expectSameContacts(got, want));
+      if (!want.empty()) ++with_contacts;
+      long_moves += long_move;
+      served_after_long_moves += long_move && near.frontRebuilds() > served;
+    }
+  }
+  EXPECT_GT(with_contacts, steps / 4);
+  EXPECT_GT(served_after_long_moves, long_moves / 4);
+  std::printf(
+      "[ group pair query ] %d steps, %d with contacts, %d of %d long moves rebuilt "
+      "from a front\n",
+      steps, with_contacts, served_after_long_moves, long_moves);
+}
+
 // One call with a far larger threshold (a long advancement) gathers a large set;
 // the calls after it, with a small threshold, rebuild it at their own reach instead of
 // scanning it on every call, and answer as full traversals throughout.

@@ -182,8 +182,10 @@ class GroupPairQuery {
   /// nearer than `bound`; false (c unchanged) when no triangle pair is.
   bool refine(const NodePair& p, const Rigid& o_from_piece, double bound, LeafContact& c);
   /// GJK on a leaf pair for distance(): refined when its closest feature is virtual
-  /// and it could beat `bound`. `beyond` when it cannot.
-  LeafContact exactLeafDistance(const NodePair& p, double bound, bool& beyond);
+  /// and it could beat `bound`. `beyond` when it cannot, or when its feature is
+  /// virtual and `defer_virtual` (the caller measures it later with a tighter bound).
+  LeafContact exactLeafDistance(const NodePair& p, double bound, bool& beyond,
+                                bool defer_virtual = false);
   template <class Policy>
   void traverse(Policy& policy);
   /// traverse() in two parts: the root pairs into `heap`, then node pairs taken from
@@ -196,6 +198,9 @@ class GroupPairQuery {
                     double until = kInfinity);
   /// True when the last closest leaf pair is worth measuring first at o_from_t.
   bool seedHelps(const Rigid& o_from_t) const;
+  /// Upper bound of the distance at `o_from_t` from the last distance() (its gap plus
+  /// the motion since), at most max_distance.
+  double seedBound(const Rigid& o_from_t, double max_distance) const;
   /// Lower bound of the distance at `o_from_t` from the last distance(), or -inf.
   double knownLowerBound(const Rigid& o_from_t) const;
 

@@ -603,6 +603,64 @@ TEST_F(GroupPairQueryTest, AfterAJumpTheCarriedQueryAnswersAsAFreshOne) {
               jumps, with_contacts);
 }
 
+// Two elephants apart, the target orbiting the other and jumping sideways by 1 to 4 %
+// of the size now and then: after a jump the carried query's last closest pair, its
+// seed, is refined on its real triangles (a virtual feature of its patch hull) no
+// more than a fresh query refines it, which measures it only if the traversal's bound
+// lets it; the distances equal a fresh query's.
+TEST_F(GroupPairQueryTest, AfterAJumpTheSeedIsRefinedOnlyAsAFreshQueryWould) {
+  Part target_part{closed_.get(), Rigid(), 7};
+  const GroupView target{&target_part, 1, Placement()};
+  GroupPairQuery warm;
+  warm.bind(target, opponent_);
+  const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
+  const double size = (closed_->bounds().max - closed_->bounds().min).norm();
+  // Offset along u (from the centre) where the target, turned by q, is `gap` apart.
+  auto placed = [&](const Mat3& q, const Vec3& u, double gap) {
+    double s = size;
+    for (int k = 0; k < 60; ++k) {
+      GroupPairQuery fresh;
+      fresh.bind(target, opponent_);
+      LeafContact c;
+      fresh.distance({q, centre + s * u - q * centre}, kInfinity, c);
+      if (c.intersecting) {
+        s += 0.05 * size;
+        continue;
+      }
+      if (std::abs(c.gap - gap) < 0.05 * gap) break;
+      s -= c.gap - gap;
+    }
+    return Rigid{q, centre + s * u - q * centre};
+  };
+  test::Rng rng(71);
+  int jumps = 0, refined_fresh = 0, refined_warm = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 4 : 16); ++run) {
+    const Mat3 q = test::randomRotation(rng).toRotationMatrix();
+    Vec3 u = test::randomDirection(rng);
+    const Vec3 axis = u.cross(test::randomDirection(rng)).normalized();
+    for (int k = 0; k < 6; ++k) {
+      SCOPED_TRACE(k);
+      const bool jump = k % 3 == 2;
+      u = Eigen::AngleAxisd(jump ? 0.01 * (1 + run % 4) : 0.002, axis) * u;
+      const Rigid pose = placed(q, u, 0.01 * size);
+      GroupPairQuery fresh;
+      fresh.bind(target, opponent_);
+      LeafContact w, f;
+      ASSERT_EQ(warm.distance(pose, kInfinity, w), fresh.distance(pose, kInfinity, f));
+      EXPECT_NEAR(w.gap, f.gap, 1e-12);
+      if (!jump) continue;
+      ++jumps;
+      refined_warm += warm.counters().refined;
+      refined_fresh += fresh.counters().refined;
+      EXPECT_LE(warm.counters().refined, fresh.counters().refined);
+    }
+  }
+  std::printf(
+      "[ group pair query ] %d jumps between elephants: leaf pairs refined %d carried, "
+      "%d fresh\n",
+      jumps, refined_warm, refined_fresh);
+}
+
 // A drifting, slowly turning target (a body pushed along a surface): the kept pairs
 // give the traversal's contacts, and once a pair was measured, only its own motion
 // since brings it back, so a second, near-identical pose re-measures only the pairs

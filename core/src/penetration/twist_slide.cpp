@@ -123,7 +123,18 @@ TwistSlideResult twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& go
     motion.dc = z.head<3>();
     motion.dtheta = z.tail<3>();
     scratch.skip.clear();
-    const double s = advance(query, motion, 0.5 * skin, scratch.skip, scratch.candidates, margin);
+    double s = advance(query, motion, 0.5 * skin, scratch.skip, scratch.candidates, margin);
+    bool continues = true;  // the step taken is the QP's (a run may go on from it)
+    if (s <= 0.0 && contact && !z.tail<3>().isZero(0.0)) {
+      continues = false;
+      // Blocked at once: a pair nearer than the skin that the turn may close (the
+      // advancement's bound counts the turn at the leaf's whole radius). The
+      // translation alone, at no turn, opens it provably.
+      z = cappedTwist(scratch, y, target, z, 0.0, rho, skin, settings.tolerance);
+      motion.dc = z.head<3>();
+      motion.dtheta = z.tail<3>();
+      s = advance(query, motion, 0.5 * skin, scratch.skip, scratch.candidates, margin);
+    }
     if (!contact && s >= 1.0 && z == target) {  // reached the goal unobstructed
       proxy = goal;
       ++k;
@@ -135,7 +146,7 @@ TwistSlideResult twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& go
       break;
     }
     proxy = motion.at(s);
-    last = s >= 1.0 ? step : Vec6::Zero();
+    last = continues && s >= 1.0 ? step : Vec6::Zero();
   }
   return out;
 }

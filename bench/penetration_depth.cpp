@@ -23,6 +23,11 @@
 #include <utility>
 #include <vector>
 
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define SC_HAVE_CALLGRIND 1
+#endif
+
 #include "harness.h"
 #include "meshes.h"
 #include "pair_queries.h"
@@ -67,6 +72,10 @@ struct HapticRow {
   int jump_ratio_step = -1, jumps_over_3x = 0;
 };
 std::vector<HapticRow> g_haptic;
+/// --callgrind-updates: under `valgrind --tool=callgrind --collect-atstart=no`, each
+/// update along a haptic path is collected alone and dumped after (OUT.1, OUT.2, ...;
+/// bench/callgrind_updates.py reads them).
+bool g_callgrind_updates = false;
 /// Per step of the first pair in INPUT mode: step, wall us, cpu us, |tpdv|.
 std::vector<std::array<double, 4>> g_haptic_steps;
 
@@ -192,8 +201,17 @@ void BM_HapticPath(benchmark::State& state) {
     for (int k = 0; k < kHapticSteps; ++k) {
       const double c0 = sc_bench::threadCpuSeconds();
       const auto t0 = Clock::now();
+#ifdef SC_HAVE_CALLGRIND
+      if (g_callgrind_updates) CALLGRIND_TOGGLE_COLLECT;
+#endif
       const sc::DirectedResult r =
           updateOneWay(tracker, part_a, path[k], part_b, opponent, settings);
+#ifdef SC_HAVE_CALLGRIND
+      if (g_callgrind_updates) {
+        CALLGRIND_TOGGLE_COLLECT;
+        CALLGRIND_DUMP_STATS;
+      }
+#endif
       const auto t1 = Clock::now();
       const double c1 = sc_bench::threadCpuSeconds();
       wall.push_back(sc_bench::seconds(t0, t1));
@@ -1098,9 +1116,17 @@ void writeCsvs(const std::string& dir) {
 
 }  // namespace
 
-// --csv-dir=<dir> is ours; the rest is Google Benchmark's. Exits 1 when the convex
-// global depth misses its target.
+// --csv-dir=<dir> and --callgrind-updates are ours; the rest is Google Benchmark's.
+// Exits 1 when the convex global depth misses its target.
 int main(int argc, char** argv) {
-  const int code = sc_bench::benchmarkMain(argc, argv, "--csv-dir=", writeCsvs);
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--callgrind-updates") == 0)
+      g_callgrind_updates = true;
+    else
+      args.push_back(argv[i]);
+  }
+  const int code =
+      sc_bench::benchmarkMain(static_cast<int>(args.size()), args.data(), "--csv-dir=", writeCsvs);
   return code != 0 ? code : (g_target_missed ? 1 : 0);
 }

@@ -89,8 +89,7 @@ TEST_P(Tunnelling, OneUpdateThroughTheWallReportsPenetration) {
                    out);
     ASSERT_EQ(out[0].code, ErrorCode::Ok);
     ASSERT_GT(out[0].distance, 0.0);
-    tracker.update({&body_part, 1, to}, {&wall_part, 1, wall_place}, {true, false}, settings,
-                   out);
+    tracker.update({&body_part, 1, to}, {&wall_part, 1, wall_place}, {true, false}, settings, out);
     const DirectedResult& r = out[0];
     ASSERT_EQ(r.code, ErrorCode::Ok);
     const Status valid = detail::checkResult(r, to, wall_place);
@@ -102,12 +101,17 @@ TEST_P(Tunnelling, OneUpdateThroughTheWallReportsPenetration) {
     for (const Vec3& v : body.vertices) centroid += v / static_cast<double>(body.vertices.size());
     const Rigid contact = placementOf(r.contact_orientation, r.contact_position).worldFromLocal();
     EXPECT_GT(side * (contact * centroid).z(), 0.0);
-    EXPECT_GT(side * r.normal.z(), 0.9);
-    EXPECT_LE(meshSurfaceDistance(body, contact, wall_mesh, Rigid()).distance,
-              settings.tolerance);
+    // The normal faces the entry side: the wall's normal, but for an edge of the body
+    // resting on the soup quad's diagonal, where each triangle's normal is that of
+    // two edges (perpendicular to both, so tilted), still towards the entry side.
+    const Vec3& on_wall = r.point_on_opponent;
+    const bool on_seam = wall.kind == ModelKind::TriangleSoup &&
+                         std::abs(on_wall.x() - on_wall.y()) < 1e-9 * kWallHalfSize;
+    EXPECT_GT(side * r.normal.z(), on_seam ? 0.0 : 0.9);
+    EXPECT_LE(meshSurfaceDistance(body, contact, wall_mesh, Rigid()).distance, settings.tolerance);
   }
-  std::printf("[ tunnelling ] %s, one update: %d of %d report penetration\n", wall.name,
-              reported, kCases);
+  std::printf("[ tunnelling ] %s, one update: %d of %d report penetration\n", wall.name, reported,
+              kCases);
 }
 
 /// A fast sequence: steps far larger than the wall's thickness cross it; the depth
@@ -155,7 +159,7 @@ INSTANTIATE_TEST_SUITE_P(Walls, Tunnelling,
                                            Wall{ModelKind::TriangleSoup, "soup quad"}),
                          [](const ::testing::TestParamInfo<Wall>& param_info) {
                            return param_info.param.kind == ModelKind::ClosedPolyhedron ? "ThinBox"
-                                                                                 : "SoupQuad";
+                                                                                       : "SoupQuad";
                          });
 
 }  // namespace

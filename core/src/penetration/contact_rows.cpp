@@ -79,6 +79,13 @@ namespace {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
+/// A row of the working set that the set's own solution still misses by less than
+/// this (of the rows' magnitudes, as kRowTolerance) is missed by rounding, not a
+/// wedge: FREE's rotation weight (1e-6 rho^2) spreads the LDP's columns by ~1e3 / rho,
+/// and its point then misses a set row by ~1e-9 of the magnitudes. A wedge (nearly
+/// opposite rows) misses by a good part of them.
+constexpr double kSetRowTolerance = 1e-6;
+
 /// The vertices of patches[i] within `near` of its plane, listed on first need.
 std::pair<const int*, const int*> nearVertices(const ContactPatch& p, std::size_t i, double near,
                                                PatchQpWork& w) {
@@ -168,8 +175,9 @@ void solvePatchQp(const std::vector<ContactPatch>& patches, const Vec3& y, const
     length = std::max(length, -mostViolated(patches, i, y, goal, skin, near, w, vertex));
   if (length <= 0.0) return;  // the goal itself is feasible
   // The optimum over rows that keep every other row is the optimum over all; a round
-  // adds a row not in the set, so it ends. A row of the set still violated is a
-  // wedge (nearly opposite rows): no point, as the all-rows solve judges it.
+  // adds a row not in the set, so it ends. A row of the set still violated beyond
+  // rounding is a wedge (nearly opposite rows): no point, as the all-rows solve
+  // judges it.
   for (;;) {
     const Vec6 z = w.qp.z;
     double scale = length;
@@ -177,9 +185,11 @@ void solvePatchQp(const std::vector<ContactPatch>& patches, const Vec3& y, const
       scale = std::max(scale, length + rowTermsBound(p, y, z, skin, near));
     const std::size_t before = w.rows.size();
     for (std::size_t i = 0; i < patches.size(); ++i) {
-      if (mostViolated(patches, i, y, z, skin, near, w, vertex) >= -kRowTolerance * scale) continue;
+      const double slack = mostViolated(patches, i, y, z, skin, near, w, vertex);
+      if (slack >= -kRowTolerance * scale) continue;
       const std::pair<int, int> id(static_cast<int>(i), vertex);
       if (std::find(w.ids.begin(), w.ids.end(), id) != w.ids.end()) {
+        if (slack >= -kSetRowTolerance * scale) continue;  // the set's own rounding
         w.qp.feasible = false;
         break;
       }

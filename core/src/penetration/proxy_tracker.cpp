@@ -219,9 +219,10 @@ Rigid ProxyTracker::impactPose(GroupPairQuery& query, const Rigid& goal, const V
 
 bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                         const PairSettings& settings, ProxyOutcome& out) {
-  out.iterations =
+  const TwistSlideResult slid =
       twistSlide(query, proxy_, goal, center, previous_proxy_, settings, skinOf(settings), twist_);
-  ran_out_ = out.iterations >= settings.max_iterations;
+  out.iterations = slid.iterations;
+  ran_out_ = slid.blocked || slid.iterations >= settings.max_iterations;
   return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
 }
 

@@ -31,15 +31,23 @@ struct TwistScratch {
 /// makes the Free weights scale-free.
 Eigen::Matrix<double, 6, 1> twistWeights(const PairSettings& settings, double rho);
 
+struct TwistSlideResult {
+  int iterations = 0;
+  bool blocked = false;  ///< advancement allowed no motion at all: not settled
+};
+
 /// Moves `proxy` (o_from_t) towards `goal` with rotation free, never through the
 /// opponent: per iteration, contacts within the tolerance give rows kept at gap >=
-/// skin; the QP's twist is capped to a rotational displacement of
-/// safety_coefficient * tolerance at radius rho while in contact (the
-/// linearisation of rotation is first order); conservative advancement applies it.
-/// @return the iterations used.
-int twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal, const Vec3& center,
-               const Rigid& previous_proxy, const PairSettings& settings, double skin,
-               TwistScratch& scratch);
+/// skin; while in contact the QP's turn is capped to a rotational displacement of
+/// safety_coefficient * tolerance at radius rho (the linearisation of rotation is
+/// first order) and the translation solved again at the capped turn; a step that
+/// continues a run of shrinking parallel steps is stretched to the run's sum;
+/// conservative advancement applies it. Converged when a step in contact brings the
+/// proxy nearer the goal by less than 1e-4 of the tolerance, in translation and in
+/// rotation (at radius rho).
+TwistSlideResult twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal,
+                            const Vec3& center, const Rigid& previous_proxy,
+                            const PairSettings& settings, double skin, TwistScratch& scratch);
 
 /// Radius of the target's leaves about its centre (target group frame).
 double targetRadius(const GroupPairQuery& query, const Vec3& center);

@@ -51,44 +51,48 @@ void ConvexPolytope::buildAdjacency(FinalizeScratch& scratch) {
   // candidates then lose their repeats (a mark per vertex; on a closed surface each
   // neighbour comes twice) and are sorted in place. Walking each vertex's faces
   // instead visits every face three times; a cache load finalizes tens of
-  // thousands of polytopes with the same scratch.
+  // thousands of polytopes with the same scratch. Raw pointers: every array here
+  // holds ints, so through the vectors each store would reload every bound.
   const int n = static_cast<int>(vertices.size());
+  const int face_count = static_cast<int>(faces.size());
   vertex_face_start.assign(static_cast<std::size_t>(n) + 1, 0);
+  int* const start = vertex_face_start.data();
   for (const Tri& f : faces)
-    for (int k = 0; k < 3; ++k) ++vertex_face_start[f[k] + 1];
-  for (int v = 0; v < n; ++v) vertex_face_start[v + 1] += vertex_face_start[v];
-  const int corners = vertex_face_start[n];
-  std::vector<int>& fill = scratch.fill;
-  std::vector<int>& mark = scratch.mark;
-  std::vector<int>& entries = scratch.entries;
-  fill.assign(vertex_face_start.begin(), vertex_face_start.end() - 1);
+    for (int k = 0; k < 3; ++k) ++start[f[k] + 1];
+  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+  const int corners = start[n];
+  scratch.fill.assign(start, start + n);
+  scratch.entries.resize(2 * static_cast<std::size_t>(corners));
   vertex_faces.resize(static_cast<std::size_t>(corners));
-  entries.resize(2 * static_cast<std::size_t>(corners));
-  for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
-    const Tri& t = faces[static_cast<std::size_t>(f)];
-    for (int k = 0; k < 3; ++k) {
-      const int slot = fill[t[k]]++;
-      vertex_faces[static_cast<std::size_t>(slot)] = f;
-      entries[2 * static_cast<std::size_t>(slot)] = t[(k + 1) % 3];
-      entries[2 * static_cast<std::size_t>(slot) + 1] = t[(k + 2) % 3];
-    }
+  int* const fill = scratch.fill.data();
+  int* const entries = scratch.entries.data();
+  int* const around = vertex_faces.data();
+  for (int f = 0; f < face_count; ++f) {
+    const int a = faces[f][0], b = faces[f][1], c = faces[f][2];
+    const int sa = fill[a]++, sb = fill[b]++, sc = fill[c]++;
+    around[sa] = around[sb] = around[sc] = f;
+    entries[2 * sa] = b, entries[2 * sa + 1] = c;
+    entries[2 * sb] = c, entries[2 * sb + 1] = a;
+    entries[2 * sc] = a, entries[2 * sc + 1] = b;
   }
-  mark.assign(static_cast<std::size_t>(n), -1);
+  scratch.mark.assign(static_cast<std::size_t>(n), -1);
+  int* const mark = scratch.mark.data();
   adjacency_start.resize(static_cast<std::size_t>(n) + 1);
   adjacency_start[0] = 0;
   int kept = 0;  // candidates kept so far, compacted to the front of `entries`
   for (int v = 0; v < n; ++v) {
     const int first = kept;
-    for (int k = 2 * vertex_face_start[v]; k < 2 * vertex_face_start[v + 1]; ++k) {
-      const int w = entries[static_cast<std::size_t>(k)];
+    const int end = 2 * start[v + 1];
+    for (int k = 2 * start[v]; k < end; ++k) {
+      const int w = entries[k];
       if (w == v || mark[w] == v) continue;
       mark[w] = v;
-      entries[static_cast<std::size_t>(kept++)] = w;
+      entries[kept++] = w;
     }
-    sortSmall(entries.data() + first, entries.data() + kept);
+    sortSmall(entries + first, entries + kept);
     adjacency_start[v + 1] = kept;
   }
-  adjacency.assign(entries.begin(), entries.begin() + kept);
+  adjacency.assign(entries, entries + kept);
 }
 
 int ConvexPolytope::support(const Vec3& direction, int& hint) const {

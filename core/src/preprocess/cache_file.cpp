@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <thread>
 #include <type_traits>
 #include <utility>
@@ -177,15 +178,21 @@ class Reader {
   bool ok_ = true;
 };
 
-/// Reads one polytope; vertex `original` must index the mesh's vertices and face
+/// The input's counts, all that reading the records needs of it.
+struct InputCounts {
+  std::int64_t vertices = 0;
+  std::int64_t triangles = 0;
+};
+
+/// Reads one polytope; vertex `original` must index the input's vertices and face
 /// sources its triangles (or be -1). Records are read straight from the bytes once
 /// their count is known to fit. Not finalized: finalizeAll does that for all.
-bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
+bool getPolytope(Reader& r, const InputCounts& input, ConvexPolytope& p) {
   std::size_t nv = 0, nf = 0;
   if (!r.getCount(kVertexBytes, nv) || nv == 0) return false;
   p.vertices.resize(nv);
   p.original.resize(nv);
-  const auto vertex_limit = static_cast<std::int64_t>(mesh.vertices.size());
+  const std::int64_t vertex_limit = input.vertices;
   const std::uint8_t* at = r.take(nv * kVertexBytes);
   for (std::size_t i = 0; i < nv; ++i, at += kVertexBytes) {
     double xyz[3];
@@ -201,7 +208,7 @@ bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
   if (!r.getCount(kFaceBytes, nf)) return false;
   p.faces.resize(nf);
   p.face_source.resize(nf);
-  const auto triangle_limit = static_cast<std::int64_t>(mesh.triangles.size());
+  const std::int64_t triangle_limit = input.triangles;
   at = r.take(nf * kFaceBytes);
   for (std::size_t f = 0; f < nf; ++f, at += kFaceBytes) {
     std::int32_t record[4];
@@ -216,13 +223,13 @@ bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
   return true;
 }
 
-bool getPolytopes(Reader& r, const MeshData& mesh, std::vector<ConvexPolytope>& out) {
+bool getPolytopes(Reader& r, const InputCounts& input, std::vector<ConvexPolytope>& out) {
   std::size_t n = 0;
   // Every polytope takes at least its two counts and one vertex.
   if (!r.getCount(2 * sizeof(std::uint64_t) + kVertexBytes, n)) return false;
   out.resize(n);
   for (ConvexPolytope& p : out) {
-    if (!getPolytope(r, mesh, p)) return false;
+    if (!getPolytope(r, input, p)) return false;
   }
   return true;
 }
@@ -353,35 +360,57 @@ const char* contentProblem(const MeshData& mesh, const std::vector<ConvexPolytop
   return nullptr;
 }
 
-/// Decodes the payload of a file whose header and checksum passed into `data`; null
-/// on success, else why it is refused (`data` unchanged).
-const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& data, int threads) {
+/// Reads the records of a payload whose header and checksum passed; null on
+/// success, else why it is refused.
+const char* readPayload(const std::uint8_t* payload, std::size_t size, const InputCounts& input,
+                        PieceCacheRecords& out) {
   const char* const malformed = "its payload is malformed";
-  Reader r(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize);
+  Reader r(payload, size);
   std::uint8_t convex = 0;
   std::int32_t virtual_faces = 0;
   if (!r.get(convex) || convex > 1 || !r.get(virtual_faces) || virtual_faces < 0) return malformed;
-  std::vector<ConvexPolytope> patches;
-  if (!getPolytopes(r, data.mesh, patches)) return malformed;
-  HullBvh bvh;
+  out.convex = convex != 0;
+  out.virtual_faces = virtual_faces;
+  if (!getPolytopes(r, input, out.patches)) return malformed;
   std::size_t node_count = 0;
   if (!r.getCount(kNodeBytes, node_count)) return malformed;
-  bvh.nodes.resize(node_count);
-  for (HullBvhNode& n : bvh.nodes) {
+  out.hierarchy.nodes.resize(node_count);
+  for (HullBvhNode& n : out.hierarchy.nodes) {
     std::int32_t left = -1, right = -1, polytope = -1;
     if (!r.get(left) || !r.get(right) || !r.get(polytope)) return malformed;
     n.left = left;
     n.right = right;
     n.polytope = polytope;
   }
-  if (!getPolytopes(r, data.mesh, bvh.hulls) || !r.done()) return malformed;
-  finalizeAll(patches, bvh.hulls, threads);
-  if (!finishHullBvh(patches, bvh)) return "its hierarchy is not a tree over its leaves";
-  if (const char* problem = contentProblem(data.mesh, patches, bvh)) return problem;
-  data.patches = std::move(patches);
-  data.hierarchy = std::move(bvh);
-  fillStats(data, convex != 0, virtual_faces);
+  if (!getPolytopes(r, input, out.hierarchy.hulls) || !r.done()) return malformed;
   return nullptr;
+}
+
+/// The records of a complete file of this version and kind for this input with a
+/// matching checksum into `out`; false otherwise, with `*rejected` set (if given)
+/// when the checksum passed but the records are malformed.
+bool readBytes(const std::uint8_t* bytes, std::size_t size, std::uint64_t input_hash,
+               ModelKind kind, const InputCounts& input, PieceCacheRecords& out,
+               std::string* rejected) {
+  Reader head(bytes, size);
+  Header h;
+  if (!readHeader(head, h) || !headerMatches(h, input_hash, kind, size)) return false;
+  const std::uint8_t* payload = bytes + kHeaderSize;
+  if (payloadChecksum(payload, size - kHeaderSize) != h.checksum) return false;
+  // Past the checksum the file is intact: what follows finds a file that was not
+  // written by this library for this input (forged, or written by a bug).
+  PieceCacheRecords records;
+  if (const char* problem = readPayload(payload, size - kHeaderSize, input, records)) {
+    if (rejected != nullptr) *rejected = problem;
+    return false;
+  }
+  out = std::move(records);
+  return true;
+}
+
+InputCounts countsOf(const MeshData& mesh) {
+  return {static_cast<std::int64_t>(mesh.vertices.size()),
+          static_cast<std::int64_t>(mesh.triangles.size())};
 }
 
 }  // namespace
@@ -481,19 +510,28 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
   return bytes;
 }
 
+bool acceptPieceCacheRecords(PieceCacheRecords&& records, PieceData& data, std::string* rejected,
+                             int threads) {
+  finalizeAll(records.patches, records.hierarchy.hulls, threads);
+  const char* problem = finishHullBvh(records.patches, records.hierarchy)
+                            ? contentProblem(data.mesh, records.patches, records.hierarchy)
+                            : "its hierarchy is not a tree over its leaves";
+  if (problem != nullptr) {
+    if (rejected != nullptr) *rejected = problem;
+    return false;
+  }
+  data.patches = std::move(records.patches);
+  data.hierarchy = std::move(records.hierarchy);
+  fillStats(data, records.convex, records.virtual_faces);
+  return true;
+}
+
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
                       PieceData& data, std::string* rejected, int threads) {
-  Reader head(bytes.data(), bytes.size());
-  Header h;
-  if (!readHeader(head, h) || !headerMatches(h, input_hash, data.kind, bytes.size())) return false;
-  const std::uint8_t* payload = bytes.data() + kHeaderSize;
-  if (payloadChecksum(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
-  // Past the checksum the file is intact: what follows finds a file that was not
-  // written by this library for this input (forged, or written by a bug).
-  const char* problem = decodePayload(bytes, data, threads);
-  if (problem == nullptr) return true;
-  if (rejected != nullptr) *rejected = problem;
-  return false;
+  PieceCacheRecords records;
+  return readBytes(bytes.data(), bytes.size(), input_hash, data.kind, countsOf(data.mesh), records,
+                   rejected) &&
+         acceptPieceCacheRecords(std::move(records), data, rejected, threads);
 }
 
 namespace {
@@ -518,27 +556,43 @@ bool existsAsNonRegular(const std::string& path) {
 
 }  // namespace
 
-bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
-                    std::string* rejected, int threads) {
+bool readPieceCacheRecords(const std::string& path, std::uint64_t input_hash, ModelKind kind,
+                           std::size_t vertex_count, std::size_t triangle_count,
+                           PieceCacheRecords& out, std::string* rejected) {
   std::FILE* file = openRegularFile(path);
   if (file == nullptr) return false;
   // The header first: a foreign or stale file of any size is rejected unread.
-  std::vector<std::uint8_t> bytes(kHeaderSize);
+  std::uint8_t header[kHeaderSize];
   bool ok = std::fseek(file, 0, SEEK_END) == 0;
   const long size = ok ? std::ftell(file) : -1;
   ok = ok && size >= static_cast<long>(kHeaderSize) && std::fseek(file, 0, SEEK_SET) == 0 &&
-       std::fread(bytes.data(), 1, kHeaderSize, file) == kHeaderSize;
+       std::fread(header, 1, kHeaderSize, file) == kHeaderSize;
   Header h;
-  Reader head(bytes.data(), bytes.size());
+  Reader head(header, kHeaderSize);
   ok = ok && readHeader(head, h) &&
-       headerMatches(h, input_hash, data.kind, static_cast<std::size_t>(size));
+       headerMatches(h, input_hash, kind, static_cast<std::size_t>(size));
+  // Not zero-filled first: every byte is read over at once (a vector would clear
+  // them all, a pass as long as the read).
+  std::unique_ptr<std::uint8_t[]> bytes;
   if (ok) {
-    bytes.resize(static_cast<std::size_t>(size));
-    ok = std::fread(bytes.data() + kHeaderSize, 1, bytes.size() - kHeaderSize, file) ==
-         bytes.size() - kHeaderSize;
+    const auto total = static_cast<std::size_t>(size);
+    bytes.reset(new std::uint8_t[total]);
+    std::memcpy(bytes.get(), header, kHeaderSize);
+    ok = std::fread(bytes.get() + kHeaderSize, 1, total - kHeaderSize, file) == total - kHeaderSize;
   }
   std::fclose(file);
-  return ok && decodePieceCache(bytes, input_hash, data, rejected, threads);
+  const InputCounts input{static_cast<std::int64_t>(vertex_count),
+                          static_cast<std::int64_t>(triangle_count)};
+  return ok && readBytes(bytes.get(), static_cast<std::size_t>(size), input_hash, kind, input, out,
+                         rejected);
+}
+
+bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
+                    std::string* rejected, int threads) {
+  PieceCacheRecords records;
+  return readPieceCacheRecords(path, input_hash, data.kind, data.mesh.vertices.size(),
+                               data.mesh.triangles.size(), records, rejected) &&
+         acceptPieceCacheRecords(std::move(records), data, rejected, threads);
 }
 
 Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data) {

@@ -155,6 +155,36 @@ Status refusedCache(const std::string& path, const std::string& reason, const St
   return Status(ErrorCode::File, std::move(message));
 }
 
+/// Validates a closed piece (orienting it outward) and, with a cache file, reads the
+/// file's records (`have_records`). Reading them needs only the input's counts, so
+/// on two or more threads it runs beside the validation: on a cache hit the
+/// validation is most of what is left besides the file.
+Status validateAndReadCache(ModelKind kind, MeshData& mesh, const BuildOptions& options,
+                            std::uint64_t key, bool& flipped, detail::PieceCacheRecords& records,
+                            bool& have_records, std::string& rejected) {
+  const std::size_t vertex_count = mesh.vertices.size();
+  const std::size_t triangle_count = mesh.triangles.size();
+  const auto read = [&options, key, kind, vertex_count, triangle_count, &records, &have_records,
+                     &rejected] {
+    if (options.cache_file.empty()) return;
+    have_records = detail::readPieceCacheRecords(options.cache_file, key, kind, vertex_count,
+                                                 triangle_count, records, &rejected);
+  };
+  if (kind != ModelKind::ClosedPolyhedron) {
+    read();
+    return Status::success();
+  }
+  if (options.cache_file.empty() || threadCount(options) < 2) {
+    Status valid = detail::validateClosed(mesh, flipped);
+    if (valid.ok()) read();
+    return valid;
+  }
+  std::thread reader(read);
+  Status valid = detail::validateClosed(mesh, flipped);
+  reader.join();
+  return valid;
+}
+
 }  // namespace
 
 Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options) {
@@ -174,15 +204,18 @@ Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& o
   data->kind = kind;
   data->stats.vertices = static_cast<int>(mesh.vertices.size());
   data->stats.triangles = static_cast<int>(mesh.triangles.size());
-  if (kind == ModelKind::ClosedPolyhedron) {
-    if (Status s = detail::validateClosed(mesh, data->stats.flipped); !s.ok()) return s;
-  }
+  std::string rejected;
+  detail::PieceCacheRecords records;
+  bool have_records = false;
+  if (Status s = validateAndReadCache(kind, mesh, options, key, data->stats.flipped, records,
+                                      have_records, rejected);
+      !s.ok())
+    return s;
   data->mesh = std::move(mesh);
   data->bounds = referencedBounds(data->mesh);
   Status file_status;
-  std::string rejected;
-  if (use_cache &&
-      detail::loadPieceCache(options.cache_file, key, *data, &rejected, threadCount(options))) {
+  if (have_records &&
+      detail::acceptPieceCacheRecords(std::move(records), *data, &rejected, threadCount(options))) {
     data->stats.from_cache = true;
   } else {
     if (cancelled(options)) return cancelledStatus();

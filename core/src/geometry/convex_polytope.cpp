@@ -83,9 +83,10 @@ void ConvexPolytope::buildAdjacency(FinalizeScratch& scratch) {
   for (int v = 0; v < n; ++v) {
     const int first = kept;
     const int end = 2 * start[v + 1];
+    mark[v] = v;  // v is no neighbour of its own
     for (int k = 2 * start[v]; k < end; ++k) {
       const int w = entries[k];
-      if (w == v || mark[w] == v) continue;
+      if (mark[w] == v) continue;
       mark[w] = v;
       entries[kept++] = w;
     }

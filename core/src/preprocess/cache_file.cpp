@@ -186,7 +186,7 @@ struct InputCounts {
 
 /// Reads one polytope; vertex `original` must index the input's vertices and face
 /// sources its triangles (or be -1). Records are read straight from the bytes once
-/// their count is known to fit. Not finalized: finalizeAll does that for all.
+/// their count is known to fit. Not finalized: finalizeAndCheck does that for all.
 bool getPolytope(Reader& r, const InputCounts& input, ConvexPolytope& p) {
   std::size_t nv = 0, nf = 0;
   if (!r.getCount(kVertexBytes, nv) || nv == 0) return false;
@@ -232,28 +232,6 @@ bool getPolytopes(Reader& r, const InputCounts& input, std::vector<ConvexPolytop
     if (!getPolytope(r, input, p)) return false;
   }
   return true;
-}
-
-/// finalize() on every polytope of `a` then `b`, on up to `threads` threads taking
-/// blocks of polytopes in turn; each polytope's result depends on it alone.
-void finalizeAll(std::vector<ConvexPolytope>& a, std::vector<ConvexPolytope>& b, int threads) {
-  constexpr std::size_t kBlock = 64;
-  const std::size_t total = a.size() + b.size();
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    FinalizeScratch scratch;
-    for (std::size_t from = next.fetch_add(kBlock); from < total; from = next.fetch_add(kBlock)) {
-      for (std::size_t i = from; i < std::min(total, from + kBlock); ++i)
-        (i < a.size() ? a[i] : b[i - a.size()]).finalize(scratch);
-    }
-  };
-  const std::size_t helpers =
-      std::min(static_cast<std::size_t>(std::max(threads, 1) - 1), total / kBlock);
-  std::vector<std::thread> pool;
-  pool.reserve(helpers);
-  for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
 }
 
 struct Header {
@@ -304,23 +282,69 @@ bool verticesAreInput(const MeshData& mesh, const ConvexPolytope& p) {
   return true;
 }
 
-/// Every real face is the input triangle it names (same vertices), and every input
-/// triangle is a real face of some leaf: the leaves cover the surface.
-bool facesCoverInput(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves) {
+/// Every real face is the input triangle it names (same vertices).
+bool realFacesAreInput(const MeshData& mesh, const ConvexPolytope& p) {
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    const int source = p.face_source[f];
+    if (source < 0) continue;
+    Tri face(p.original[p.faces[f][0]], p.original[p.faces[f][1]], p.original[p.faces[f][2]]);
+    Tri input = mesh.triangles[static_cast<std::size_t>(source)];
+    std::sort(face.data(), face.data() + 3);
+    std::sort(input.data(), input.data() + 3);
+    if (face != input) return false;
+  }
+  return true;
+}
+
+/// Every input triangle is a real face of some leaf: the leaves cover the surface.
+bool leavesCoverInput(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves) {
   std::vector<char> covered(mesh.triangles.size(), 0);
   for (const ConvexPolytope& p : leaves) {
-    for (std::size_t f = 0; f < p.faces.size(); ++f) {
-      const int source = p.face_source[f];
-      if (source < 0) continue;
-      Tri face(p.original[p.faces[f][0]], p.original[p.faces[f][1]], p.original[p.faces[f][2]]);
-      Tri input = mesh.triangles[static_cast<std::size_t>(source)];
-      std::sort(face.data(), face.data() + 3);
-      std::sort(input.data(), input.data() + 3);
-      if (face != input) return false;
-      covered[static_cast<std::size_t>(source)] = 1;
+    for (const int source : p.face_source) {
+      if (source >= 0) covered[static_cast<std::size_t>(source)] = 1;
     }
   }
   return std::find(covered.begin(), covered.end(), 0) == covered.end();
+}
+
+/// What the per-polytope checks found, a flag per kind: the problem reported then
+/// does not depend on which thread saw which polytope.
+struct PolytopeProblems {
+  std::atomic<bool> leaf_vertex{false};
+  std::atomic<bool> hull_vertex{false};
+  std::atomic<bool> real_face{false};
+};
+
+/// finalize() and the per-polytope checks against `mesh` on every leaf then every
+/// hull, on up to `threads` threads taking blocks of polytopes in turn; each
+/// polytope's result depends on it alone.
+void finalizeAndCheck(std::vector<ConvexPolytope>& leaves, std::vector<ConvexPolytope>& hulls,
+                      const MeshData& mesh, PolytopeProblems& problems, int threads) {
+  constexpr std::size_t kBlock = 64;
+  const std::size_t total = leaves.size() + hulls.size();
+  std::atomic<std::size_t> next{0};
+  auto one = [&](std::size_t i, FinalizeScratch& scratch) {
+    const bool leaf = i < leaves.size();
+    ConvexPolytope& p = leaf ? leaves[i] : hulls[i - leaves.size()];
+    p.finalize(scratch);
+    if (!verticesAreInput(mesh, p))
+      (leaf ? problems.leaf_vertex : problems.hull_vertex).store(true, std::memory_order_relaxed);
+    if (leaf && !realFacesAreInput(mesh, p))
+      problems.real_face.store(true, std::memory_order_relaxed);
+  };
+  auto work = [&] {
+    FinalizeScratch scratch;
+    for (std::size_t from = next.fetch_add(kBlock); from < total; from = next.fetch_add(kBlock)) {
+      for (std::size_t i = from; i < std::min(total, from + kBlock); ++i) one(i, scratch);
+    }
+  };
+  const std::size_t helpers =
+      std::min(static_cast<std::size_t>(std::max(threads, 1) - 1), total / kBlock);
+  std::vector<std::thread> pool;
+  pool.reserve(helpers);
+  for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
 }
 
 /// Every inner node's box contains its children's (to rounding of the hull build):
@@ -340,17 +364,13 @@ bool innerHullsContainChildren(const std::vector<ConvexPolytope>& leaves, const 
   return true;
 }
 
-/// What makes decoded leaves and hierarchy (structurally valid) not a preprocessing
-/// of `mesh`, or null. Linear in the decoded size.
+/// What makes finalized leaves and hierarchy (structurally valid) not a
+/// preprocessing of `mesh`, or null. Linear in the decoded size.
 const char* contentProblem(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves,
-                           const HullBvh& bvh) {
-  for (const ConvexPolytope& p : leaves) {
-    if (!verticesAreInput(mesh, p)) return "a leaf vertex is not the input vertex it names";
-  }
-  for (const ConvexPolytope& p : bvh.hulls) {
-    if (!verticesAreInput(mesh, p)) return "a hull vertex is not the input vertex it names";
-  }
-  if (!facesCoverInput(mesh, leaves))
+                           const HullBvh& bvh, const PolytopeProblems& problems) {
+  if (problems.leaf_vertex) return "a leaf vertex is not the input vertex it names";
+  if (problems.hull_vertex) return "a hull vertex is not the input vertex it names";
+  if (problems.real_face || !leavesCoverInput(mesh, leaves))
     return "its real faces are not the input triangles, or do not cover them";
   Aabb box;
   for (const Vec3& v : mesh.vertices) box.extend(v);
@@ -512,10 +532,12 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 
 bool acceptPieceCacheRecords(PieceCacheRecords&& records, PieceData& data, std::string* rejected,
                              int threads) {
-  finalizeAll(records.patches, records.hierarchy.hulls, threads);
-  const char* problem = finishHullBvh(records.patches, records.hierarchy)
-                            ? contentProblem(data.mesh, records.patches, records.hierarchy)
-                            : "its hierarchy is not a tree over its leaves";
+  PolytopeProblems problems;
+  finalizeAndCheck(records.patches, records.hierarchy.hulls, data.mesh, problems, threads);
+  const char* problem =
+      finishHullBvh(records.patches, records.hierarchy)
+          ? contentProblem(data.mesh, records.patches, records.hierarchy, problems)
+          : "its hierarchy is not a tree over its leaves";
   if (problem != nullptr) {
     if (rejected != nullptr) *rejected = problem;
     return false;

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <string>
 #include <thread>
@@ -155,6 +156,31 @@ Status refusedCache(const std::string& path, const std::string& reason, const St
   return Status(ErrorCode::File, std::move(message));
 }
 
+/// validateClosed with `read` run beside it on a second thread. An exception on
+/// either side (an allocation a file's size asks for) is thrown again after the
+/// join: none escapes the thread or leaves it running.
+template <class Read>
+Status validateBeside(MeshData& mesh, bool& flipped, const Read& read) {
+  std::exception_ptr read_failure, validation_failure;
+  std::thread reader([&read, &read_failure] {
+    try {
+      read();
+    } catch (...) {
+      read_failure = std::current_exception();
+    }
+  });
+  Status valid;
+  try {
+    valid = detail::validateClosed(mesh, flipped);
+  } catch (...) {
+    validation_failure = std::current_exception();
+  }
+  reader.join();
+  if (validation_failure) std::rethrow_exception(validation_failure);
+  if (read_failure) std::rethrow_exception(read_failure);
+  return valid;
+}
+
 /// Validates a closed piece (orienting it outward) and, with a cache file, reads the
 /// file's records (`have_records`). Reading them needs only the input's counts, so
 /// on two or more threads it runs beside the validation: on a cache hit the
@@ -174,14 +200,10 @@ Status validateAndReadCache(ModelKind kind, MeshData& mesh, const BuildOptions& 
     read();
     return Status::success();
   }
-  if (options.cache_file.empty() || threadCount(options) < 2) {
-    Status valid = detail::validateClosed(mesh, flipped);
-    if (valid.ok()) read();
-    return valid;
-  }
-  std::thread reader(read);
+  if (!options.cache_file.empty() && threadCount(options) >= 2)
+    return validateBeside(mesh, flipped, read);
   Status valid = detail::validateClosed(mesh, flipped);
-  reader.join();
+  if (valid.ok()) read();
   return valid;
 }
 

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <thread>
 #include <type_traits>
@@ -578,12 +579,14 @@ bool existsAsNonRegular(const std::string& path) {
 
 }  // namespace
 
-bool readPieceCacheRecords(const std::string& path, std::uint64_t input_hash, ModelKind kind,
+bool readPieceCacheRecords(const std::string& path,
+                           const std::function<std::uint64_t()>& input_hash, ModelKind kind,
                            std::size_t vertex_count, std::size_t triangle_count,
                            PieceCacheRecords& out, std::string* rejected) {
   std::FILE* file = openRegularFile(path);
   if (file == nullptr) return false;
-  // The header first: a foreign or stale file of any size is rejected unread.
+  // The header first: a file of another version or kind is rejected unread. The
+  // input's hash is asked for last, so that its computation can overlap the read.
   std::uint8_t header[kHeaderSize];
   bool ok = std::fseek(file, 0, SEEK_END) == 0;
   const long size = ok ? std::ftell(file) : -1;
@@ -592,7 +595,7 @@ bool readPieceCacheRecords(const std::string& path, std::uint64_t input_hash, Mo
   Header h;
   Reader head(header, kHeaderSize);
   ok = ok && readHeader(head, h) &&
-       headerMatches(h, input_hash, kind, static_cast<std::size_t>(size));
+       headerMatches(h, h.input_hash, kind, static_cast<std::size_t>(size));
   // Not zero-filled first: every byte is read over at once (a vector would clear
   // them all, a pass as long as the read).
   std::unique_ptr<std::uint8_t[]> bytes;
@@ -605,15 +608,26 @@ bool readPieceCacheRecords(const std::string& path, std::uint64_t input_hash, Mo
   std::fclose(file);
   const InputCounts input{static_cast<std::int64_t>(vertex_count),
                           static_cast<std::int64_t>(triangle_count)};
-  return ok && readBytes(bytes.get(), static_cast<std::size_t>(size), input_hash, kind, input, out,
-                         rejected);
+  PieceCacheRecords records;
+  std::string problem;
+  ok = ok && readBytes(bytes.get(), static_cast<std::size_t>(size), h.input_hash, kind, input,
+                       records, &problem);
+  // Another input's file (stale, foreign) is rebuilt without a word, however it reads.
+  if (input_hash() != h.input_hash) return false;
+  if (!ok) {
+    if (rejected != nullptr && !problem.empty()) *rejected = problem;
+    return false;
+  }
+  out = std::move(records);
+  return true;
 }
 
 bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
                     std::string* rejected, int threads) {
   PieceCacheRecords records;
-  return readPieceCacheRecords(path, input_hash, data.kind, data.mesh.vertices.size(),
-                               data.mesh.triangles.size(), records, rejected) &&
+  return readPieceCacheRecords(
+             path, [input_hash] { return input_hash; }, data.kind, data.mesh.vertices.size(),
+             data.mesh.triangles.size(), records, rejected) &&
          acceptPieceCacheRecords(std::move(records), data, rejected, threads);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,10 +60,13 @@ struct PieceCacheRecords {
 
 /// The first half of loadPieceCache: the file's header, checksum and records, every
 /// index checked against the input's counts only. It reads nothing of the input's
-/// contents, so it may run while another thread validates (and orients) them.
-/// False when the file is missing, unreadable, stale, foreign or damaged, or (then
-/// setting `*rejected`) its records are malformed.
-bool readPieceCacheRecords(const std::string& path, std::uint64_t input_hash, ModelKind kind,
+/// contents, so it may run while another thread hashes, validates and orients them:
+/// `input_hash` is called once, after the file is read (it may wait for that
+/// thread), and a file written for another input is then dropped. False when the
+/// file is missing, unreadable, stale, foreign or damaged, or (then setting
+/// `*rejected`) its records are malformed.
+bool readPieceCacheRecords(const std::string& path,
+                           const std::function<std::uint64_t()>& input_hash, ModelKind kind,
                            std::size_t vertex_count, std::size_t triangle_count,
                            PieceCacheRecords& out, std::string* rejected = nullptr);
 

@@ -381,7 +381,19 @@ TEST_F(CacheFile, AnotherMeshsCacheIsRebuiltForThisMesh) {
   ASSERT_TRUE(other.ok()) << other.status().message();
   ASSERT_FALSE(readBytes(file.path).empty());
   const std::vector<std::uint8_t> valid = encodePieceCache(starKey(), fresh());
+  const std::vector<std::uint8_t> foreign = readBytes(file.path);
   ASSERT_NO_FATAL_FAILURE(expectRebuiltAndRewritten(file.path, valid));
+  // Stale, not forged: read before the key is known (two threads) or after, it is
+  // rebuilt without a warning.
+  for (const int threads : {1, 2}) {
+    writeBytes(file.path, foreign);
+    options.threads = threads;
+    const Result<PiecePtr> rebuilt = buildPiece(ModelKind::ClosedPolyhedron, *star_, options);
+    ASSERT_TRUE(rebuilt.ok()) << rebuilt.status().message();
+    EXPECT_FALSE(rebuilt.value()->stats().from_cache) << threads;
+    EXPECT_EQ(rebuilt.status().code(), ErrorCode::Ok) << rebuilt.status().message();
+  }
+  options.threads = 0;
   // The same arrays as a soup are another input too.
   const Result<PiecePtr> soup = buildPiece(ModelKind::TriangleSoup, *star_, options);
   ASSERT_TRUE(soup.ok());

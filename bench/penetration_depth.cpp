@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <random>
@@ -448,6 +449,39 @@ void finishRow(benchmark::State& state, SweepRow row, const std::vector<double>&
   g_sweep.push_back(row);
 }
 
+/// One solver's attempt on a case: the depth it found (NaN when it found none) and the
+/// seconds the solve alone took.
+struct Attempt {
+  double depth = std::numeric_limits<double>::quiet_NaN();
+  double seconds = 0.0;
+};
+
+/// Runs `attempt(case)` kRepeats times per case, keeps the fastest, and records the
+/// error of the depth against the exact one: the row's times and errors.
+template <class Solve>
+void sweepRow(benchmark::State& state, const SweepRow& row, bool boxes, Solve attempt) {
+  SweepRow out = row;
+  std::vector<double> times, errors;
+  for (auto _ : state) {
+    double total = 0.0;
+    for (const ConvexCase& c : cases(boxes)) {
+      double best = sc::kInfinity, depth = 0.0;
+      for (int k = 0; k < kRepeats; ++k) {
+        const Attempt a = attempt(c);
+        best = std::min(best, a.seconds);
+        depth = a.depth;
+      }
+      total += best;
+      times.push_back(best);
+      const bool failed = !std::isfinite(depth);
+      out.failures += failed;
+      errors.push_back(failed ? 1.0 : std::abs(depth - c.depth) / c.depth);
+    }
+    state.SetIterationTime(total);
+  }
+  finishRow(state, out, times, errors);
+}
+
 sc::Placement placementOf(const sc::Rigid& r) {
   sc::Placement p;
   p.setMatrix(r.rotation, r.translation);
@@ -468,34 +502,19 @@ void BM_OursConvex(benchmark::State& state) {
   sc::SceneSettings settings;
   settings.tolerance = row.tolerance;
   settings.max_iterations = row.iterations;
-  std::vector<double> times, errors;
-  for (auto _ : state) {
-    double total = 0.0;
-    for (const ConvexCase& c : cases(boxes)) {
-      const sc::Part pa{c.model_a.get(), sc::Rigid(), 0}, pb{c.model_b.get(), sc::Rigid(), 1};
-      const sc::Placement opponent = placementOf(c.pose_b), free = placementOf(c.free_a),
-                          deep = placementOf(c.deep_a);
-      double best = sc::kInfinity;
-      sc::DirectedResult r;
-      for (int k = 0; k < kRepeats; ++k) {
-        sc::PairTracker tracker;
-        updateOneWay(tracker, pa, free, pb, opponent, settings);
-        const auto t0 = Clock::now();
-        r = updateOneWay(tracker, pa, deep, pb, opponent, settings);
-        best = std::min(best, sc_bench::seconds(t0, Clock::now()));
-      }
-      total += best;
-      times.push_back(best);
-      if (!r.penetrating()) {
-        ++row.failures;
-        errors.push_back(1.0);
-      } else {
-        errors.push_back(std::abs(r.tpdv.norm() - c.depth) / c.depth);
-      }
-    }
-    state.SetIterationTime(total);
-  }
-  finishRow(state, row, times, errors);
+  sweepRow(state, row, boxes, [&](const ConvexCase& c) {
+    const sc::Part pa{c.model_a.get(), sc::Rigid(), 0}, pb{c.model_b.get(), sc::Rigid(), 1};
+    const sc::Placement opponent = placementOf(c.pose_b);
+    sc::PairTracker tracker;
+    updateOneWay(tracker, pa, placementOf(c.free_a), pb, opponent, settings);
+    const sc::Placement deep = placementOf(c.deep_a);
+    Attempt attempt;
+    const auto t0 = Clock::now();
+    const sc::DirectedResult r = updateOneWay(tracker, pa, deep, pb, opponent, settings);
+    attempt.seconds = sc_bench::seconds(t0, Clock::now());
+    if (r.penetrating()) attempt.depth = r.tpdv.norm();
+    return attempt;
+  });
 }
 
 #if SC_BENCH_HAVE_CCD
@@ -543,33 +562,18 @@ void BM_CcdConvex(benchmark::State& state) {
     ccd.mpr_tolerance = row.tolerance;
   else
     ccd.epa_tolerance = row.tolerance;
-  std::vector<double> times, errors;
-  for (auto _ : state) {
-    double total = 0.0;
-    for (const ConvexCase& c : cases(boxes)) {
-      const CcdShape a{c.a.get(), &c.deep_a}, b{c.b.get(), &c.pose_b};
-      double best = sc::kInfinity;
-      ccd_real_t depth = 0;
-      int status = 0;
-      for (int k = 0; k < kRepeats; ++k) {
-        ccd_vec3_t dir, pos;
-        const auto t0 = Clock::now();
-        status = mpr ? ccdMPRPenetration(&a, &b, &ccd, &depth, &dir, &pos)
-                     : ccdGJKPenetration(&a, &b, &ccd, &depth, &dir, &pos);
-        best = std::min(best, sc_bench::seconds(t0, Clock::now()));
-      }
-      total += best;
-      times.push_back(best);
-      if (status != 0 || !std::isfinite(depth)) {
-        ++row.failures;
-        errors.push_back(1.0);
-      } else {
-        errors.push_back(std::abs(depth - c.depth) / c.depth);
-      }
-    }
-    state.SetIterationTime(total);
-  }
-  finishRow(state, row, times, errors);
+  sweepRow(state, row, boxes, [&](const ConvexCase& c) {
+    const CcdShape a{c.a.get(), &c.deep_a}, b{c.b.get(), &c.pose_b};
+    ccd_real_t depth = 0;
+    ccd_vec3_t dir, pos;
+    Attempt attempt;
+    const auto t0 = Clock::now();
+    const int status = mpr ? ccdMPRPenetration(&a, &b, &ccd, &depth, &dir, &pos)
+                           : ccdGJKPenetration(&a, &b, &ccd, &depth, &dir, &pos);
+    attempt.seconds = sc_bench::seconds(t0, Clock::now());
+    if (status == 0) attempt.depth = depth;
+    return attempt;
+  });
 }
 #endif
 
@@ -597,33 +601,18 @@ void BM_BulletConvex(benchmark::State& state) {
   row.shapes = boxes ? "boxes" : "hulls";
   row.parameters =
       std::string("defaults; btScalar of ") + std::to_string(sizeof(btScalar)) + " bytes";
-  std::vector<double> times, errors;
-  for (auto _ : state) {
-    double total = 0.0;
-    for (const ConvexCase& c : cases(boxes)) {
-      const auto ha = btHull(*c.a), hb = btHull(*c.b);
-      const btTransform ta = btPose(c.deep_a), tb = btPose(c.pose_b);
-      double best = sc::kInfinity;
-      btGjkEpaSolver2::sResults result;
-      bool ok = false;
-      for (int k = 0; k < kRepeats; ++k) {
-        const auto t0 = Clock::now();
-        ok = btGjkEpaSolver2::Penetration(ha.get(), ta, hb.get(), tb, btVector3(1, 0, 0), result);
-        best = std::min(best, sc_bench::seconds(t0, Clock::now()));
-      }
-      total += best;
-      times.push_back(best);
-      const double depth = -static_cast<double>(result.distance);
-      if (!ok || !std::isfinite(depth)) {
-        ++row.failures;
-        errors.push_back(1.0);
-      } else {
-        errors.push_back(std::abs(depth - c.depth) / c.depth);
-      }
-    }
-    state.SetIterationTime(total);
-  }
-  finishRow(state, row, times, errors);
+  sweepRow(state, row, boxes, [&](const ConvexCase& c) {
+    const auto ha = btHull(*c.a), hb = btHull(*c.b);
+    const btTransform ta = btPose(c.deep_a), tb = btPose(c.pose_b);
+    btGjkEpaSolver2::sResults result;
+    Attempt attempt;
+    const auto t0 = Clock::now();
+    const bool ok =
+        btGjkEpaSolver2::Penetration(ha.get(), ta, hb.get(), tb, btVector3(1, 0, 0), result);
+    attempt.seconds = sc_bench::seconds(t0, Clock::now());
+    if (ok) attempt.depth = -static_cast<double>(result.distance);
+    return attempt;
+  });
 }
 #endif
 

@@ -2,9 +2,11 @@
 // How query cost grows with the model: time per coherent distance query (ours and
 // FCL's, same poses), per dynamic penetration-depth update (ours), and preprocessing
 // time, against the triangle count. Series: an icosphere (convex) and CGAL's knot1
-// (non-convex) subdivided 1 -> 4 per level, and CGAL models at their own resolution;
+// (non-convex) subdivided 1 -> 4 per level, CGAL models at their own resolution and
+// two tori (40k and 160k triangles);
 // every model against a copy of itself, at unit size.
-// Usage: triangle_scaling [--csv FILE] [--max-triangles N] [--steps N]
+// Usage: triangle_scaling [--csv FILE] [--max-triangles N] [--steps N] [--models SUBSTRING]
+// (--models: only the models whose name contains SUBSTRING, e.g. torus)
 // Preprocessing alone, 10k to 2M triangles (a closed non-convex torus series, the
 // same tori as soups, CGAL's bunny), each model in a fresh process of this program
 // so that its peak memory is its own:
@@ -15,7 +17,7 @@
 // average (process CPU time, which a loaded machine disturbs least); the time a user
 // waits on a 2-core machine (wall time of the --threads build, default every core;
 // measure on an idle machine): bunny00 <= 1 s, 1M closed <= 30 s and <= 1 GiB peak, 1M
-// soup <= 10 s.
+// soup <= 10 s and <= 1 GiB peak (about 1 KB per input triangle).
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -253,6 +255,7 @@ struct Options {
   std::string one_case;        ///< internal: preprocess this case and print its row
   int threads = 0;             ///< BuildOptions::threads for the preprocessing series
   std::string series;          ///< preprocessing: "closed", "soup" or "off" only; empty: all
+  std::string models;          ///< query series: only models whose name contains this
 };
 
 /// False (after a usage message) on an unknown option or one without its value, so
@@ -278,12 +281,14 @@ bool parse(int argc, char** argv, Options& o) {
       o.threads = std::atoi(value);
     } else if (!std::strcmp(key, "--series")) {
       o.series = value;
+    } else if (!std::strcmp(key, "--models")) {
+      o.models = value;
     } else {
       known = false;
     }
     if (!known) {
       std::fprintf(stderr,
-                   "usage: %s [--csv FILE] [--max-triangles N] [--steps N]\n"
+                   "usage: %s [--csv FILE] [--max-triangles N] [--steps N] [--models SUBSTRING]\n"
                    "       %s --preprocess-csv FILE [--max-triangles N] [--threads N] "
                    "[--series closed|soup|off]\n",
                    argv[0], argv[0]);
@@ -428,6 +433,10 @@ bool checkPreprocessTargets(const std::vector<PrepRow>& rows) {
   report("1M closed peak", closed, closed ? closed->peak_kb / 1024.0 : 0.0, 1024.0, "MiB");
   const PrepRow* soup = find("soup:1000:500");
   report("1M soup wall time", soup, soup ? soup->wall_s : 0.0, 10.0, "s");
+  report("1M soup peak", soup, soup ? soup->peak_kb / 1024.0 : 0.0, 1024.0, "MiB");
+  if (soup != nullptr)
+    std::printf("1M soup peak per input triangle: %.0f bytes\n",
+                1024.0 * soup->peak_kb / soup->triangles);
   return ok;
 }
 
@@ -496,6 +505,10 @@ std::vector<std::pair<Row, sc::MeshData>> models(int max_triangles) {
   }
   for (const char* name : {"cow", "femur", "camel", "armadillo", "bunny00"})
     add("CGAL models", name, sc_bench::loadOff(name));
+  // Tori: long convex bands, which the decomposition splits into capped patches.
+  for (const int around : {200, 400})
+    add("torus (non-convex)", "torus-" + std::to_string(around * around / 1000) + "k",
+        sc::samples::torusMesh(1.0, 0.3, around, around / 2));
   sc::MeshData knot = sc_bench::loadOff("knot1");
   for (int level = 0; level <= 3 && !knot.triangles.empty(); ++level) {
     add("knot1 subdivided (non-convex)", "knot1-" + std::to_string(level), knot);
@@ -515,6 +528,7 @@ int main(int argc, char** argv) {
   (void)sc::buildPiece(sc::ModelKind::ClosedPolyhedron, icosahedron());
   std::vector<Row> rows;
   for (auto& [row, mesh] : models(options.max_triangles)) {
+    if (row.model.find(options.models) == std::string::npos) continue;
     Bench bench(mesh, row);
     if (!bench.ok()) continue;
     bench.distancePath(options.steps);

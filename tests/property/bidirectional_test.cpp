@@ -23,13 +23,6 @@ namespace {
 constexpr int kCases = caseCount(300, 30);
 constexpr int kSteps = 16;
 
-ModelPtr modelOf(const MeshData& mesh) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, mesh);
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  if (!piece.ok()) return nullptr;
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
 /// The same result up to rounding: every field within 1e-12 (relative to 1).
 void expectSame(const DirectedResult& x, const DirectedResult& y) {
   EXPECT_EQ(x.code, y.code);
@@ -85,7 +78,7 @@ TEST(Bidirectional, BothDirectionsValidAndSwapOnlyRelabels) {
   Rng rng(seed);
   Result<MeshData> l_prism = support::readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
   ASSERT_TRUE(l_prism.ok()) << l_prism.status().message();
-  const ModelPtr l_model = modelOf(l_prism.value());
+  const ModelPtr l_model = closedModel(l_prism.value());
   ASSERT_TRUE(l_model);
   const double l_size = (l_model->bounds().max - l_model->bounds().min).maxCoeff();
   const RotationMode modes[4] = {RotationMode::None, RotationMode::Input, RotationMode::Free,
@@ -100,9 +93,9 @@ TEST(Bidirectional, BothDirectionsValidAndSwapOnlyRelabels) {
       ma = l_model;
       size_a = l_size;
     } else {
-      ma = modelOf(meshOf(randomConvexShape(rng, 1.0).poly));
+      ma = closedModel(meshOf(randomConvexShape(rng, 1.0).poly));
     }
-    const ModelPtr mb = modelOf(meshOf(randomConvexShape(rng, uniform(rng, 0.5, 2.0)).poly));
+    const ModelPtr mb = closedModel(meshOf(randomConvexShape(rng, uniform(rng, 0.5, 2.0)).poly));
     ASSERT_TRUE(ma && mb);
     const Part part_a{ma.get(), Rigid(), 11}, part_b{mb.get(), Rigid(), 22};
     // Centres of rotation off the shapes' centres, so the two directions differ.

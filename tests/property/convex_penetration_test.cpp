@@ -16,12 +16,6 @@
 namespace sc::test {
 namespace {
 
-ModelPtr modelOf(const ConvexShape& s) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, meshOf(s.poly));
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
 Placement placementOf(const Quat& q, const Vec3& origin) {
   Placement p;
   p.orientation = q;
@@ -69,7 +63,7 @@ TEST(ConvexPenetration, ShallowEntryFindsTheGlobalDepth) {
     const double margin = 1e-3 * truth.depth + 1e-9 * size;
     const Placement free = placementOf(qa, pen.origin() - (truth.depth + margin) * truth.normal);
 
-    const ModelPtr ma = modelOf(a), mb = modelOf(b);
+    const ModelPtr ma = convexModel(a.poly), mb = convexModel(b.poly);
     const Part part_a{ma.get(), Rigid(), 1}, part_b{mb.get(), Rigid(), 2};
     SceneSettings settings;
     settings.tolerance = 1e-3 * size;

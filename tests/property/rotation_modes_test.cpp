@@ -37,13 +37,6 @@ constexpr std::array<RotationMode, 4> kModes = {RotationMode::None, RotationMode
                                                 RotationMode::Free, RotationMode::Mix};
 enum { kNone, kInput, kFree, kMix };
 
-ModelPtr boxModel(const Vec3& half) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, boxMesh(half));
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  if (!piece.ok()) return nullptr;
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
 double potential(const DirectedResult& r, const SceneSettings& s) {
   return 0.5 * s.force_stiffness * r.tpdv.squaredNorm() +
          0.5 * s.torque_stiffness * r.rpdv.squaredNorm();

@@ -28,35 +28,6 @@ constexpr int kSides = 64;
 constexpr double kCircumradius = 1.0, kHalfHeight = 2.0, kCubeHalf = 0.05;
 constexpr double kDepth = 0.04, kStep = 7.5e-4;
 
-/// A regular prism about the z axis: kSides sides, closed by two fans.
-MeshData prismMesh() {
-  MeshData m;
-  for (int i = 0; i < kSides; ++i) {
-    const double t = 2.0 * kPi * i / kSides;
-    m.vertices.push_back(
-        Vec3(kCircumradius * std::cos(t), kCircumradius * std::sin(t), -kHalfHeight));
-    m.vertices.push_back(
-        Vec3(kCircumradius * std::cos(t), kCircumradius * std::sin(t), kHalfHeight));
-  }
-  for (int i = 0; i < kSides; ++i) {
-    const int j = (i + 1) % kSides;
-    m.triangles.push_back({2 * i, 2 * j, 2 * j + 1});
-    m.triangles.push_back({2 * i, 2 * j + 1, 2 * i + 1});
-    if (i > 0 && j > 0) {
-      m.triangles.push_back({0, 2 * j, 2 * i});
-      m.triangles.push_back({1, 2 * i + 1, 2 * j + 1});
-    }
-  }
-  return m;
-}
-
-ModelPtr modelOf(const MeshData& mesh) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, mesh);
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  if (!piece.ok()) return nullptr;
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
 Placement at(const Vec3& center) {
   Placement p;
   p.world_center = center;
@@ -64,8 +35,9 @@ Placement at(const Vec3& center) {
 }
 
 TEST(TpdvContinuity, DeepAlongATessellatedSurfaceTheTurnAtEachFacetIsBounded) {
-  const MeshData prism = prismMesh(), cube = boxMesh(Vec3::Constant(kCubeHalf));
-  const ModelPtr opponent = modelOf(prism), target = modelOf(cube);
+  const MeshData prism = prismMesh(kSides, kCircumradius, kHalfHeight),
+                 cube = boxMesh(Vec3::Constant(kCubeHalf));
+  const ModelPtr opponent = closedModel(prism), target = closedModel(cube);
   ASSERT_TRUE(opponent && target);
   const detail::ConvexPolytope prism_poly = polytopeFromMesh(prism);
   const detail::ConvexPolytope cube_poly = polytopeFromMesh(cube);

@@ -34,6 +34,32 @@ ModelPtr boxModel(const Vec3& half_extents) {
   return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
 }
 
+ModelPtr closedModel(const MeshData& mesh) {
+  auto piece = buildPiece(ModelKind::ClosedPolyhedron, mesh);
+  EXPECT_TRUE(piece.ok()) << piece.status().message();
+  if (!piece.ok()) return nullptr;
+  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
+}
+
+MeshData prismMesh(int sides, double circumradius, double half_height) {
+  MeshData m;
+  for (int i = 0; i < sides; ++i) {
+    const double t = 2.0 * kPi * i / sides;
+    const Vec3 rim(circumradius * std::cos(t), circumradius * std::sin(t), 0.0);
+    m.vertices.push_back(rim - Vec3(0, 0, half_height));
+    m.vertices.push_back(rim + Vec3(0, 0, half_height));
+  }
+  for (int i = 0; i < sides; ++i) {
+    const int j = (i + 1) % sides;
+    m.triangles.push_back({2 * i, 2 * j, 2 * j + 1});
+    m.triangles.push_back({2 * i, 2 * j + 1, 2 * i + 1});
+    if (i > 0 && j > 0) {
+      m.triangles.push_back({0, 2 * j, 2 * i});
+      m.triangles.push_back({1, 2 * i + 1, 2 * j + 1});
+    }
+  }
+  return m;
+}
 ModelPtr convexModel(const detail::ConvexPolytope& poly) {
   auto piece = buildPiece(ModelKind::ClosedPolyhedron, meshOf(poly));
   EXPECT_TRUE(piece.ok()) << piece.status().message();

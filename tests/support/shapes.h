@@ -24,6 +24,12 @@ MeshData boxMesh(const Vec3& half_extents);
 /// A one-piece closed-polyhedron model of boxMesh(half_extents); null if the piece
 /// cannot be built.
 ModelPtr boxModel(const Vec3& half_extents);
+/// A one-piece closed-polyhedron model of `mesh`; a test failure and null if the
+/// piece cannot be built.
+ModelPtr closedModel(const MeshData& mesh);
+/// A regular prism about the z axis: `sides` rim vertices at `circumradius` on each of
+/// z = -half_height and z = half_height, each end a fan (outward CCW).
+MeshData prismMesh(int sides, double circumradius, double half_height);
 /// A bar (a box of half extents `bar_half`, part 1) over a 6 m x 1 m x 6 m slab (part
 /// 2) whose top face is y = 0: the scene of the bar-on-floor tests.
 struct BarOnSlab {

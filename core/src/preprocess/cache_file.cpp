@@ -535,6 +535,9 @@ bool acceptPieceCacheRecords(PieceCacheRecords&& records, PieceData& data, std::
                              int threads) {
   PolytopeProblems problems;
   finalizeAndCheck(records.patches, records.hierarchy.hulls, data.mesh, problems, threads);
+  if (data.kind == ModelKind::TriangleSoup) {
+    for (ConvexPolytope& leaf : records.patches) dropSoupLeafFaceLists(leaf);
+  }
   const char* problem =
       finishHullBvh(records.patches, records.hierarchy)
           ? contentProblem(data.mesh, records.patches, records.hierarchy, problems)

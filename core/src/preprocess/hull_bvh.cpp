@@ -89,6 +89,17 @@ ConvexPolytope flatHull(const std::vector<Vec3>& points, const std::vector<int>&
   return pointSet(kept, kept_original);
 }
 
+/// Frees what no query reads of an inner node's polytope: the traversal only takes
+/// its support points (vertices, adjacency) and bounds; the source of every face
+/// is -1 (virtual), which an absent face_source also says, and the vertex-face
+/// lists serve the leaves' features only. Faces stay: the cache file stores them
+/// and a load rebuilds the adjacency from them. About a tenth of a soup's memory.
+void releaseUnread(ConvexPolytope& hull) {
+  std::vector<int>().swap(hull.face_source);
+  std::vector<int>().swap(hull.vertex_face_start);
+  std::vector<int>().swap(hull.vertex_faces);
+}
+
 /// Inner nodes of one depth whose hulls are built by one thread.
 constexpr int kMinNodesPerThread = 64;
 
@@ -110,6 +121,10 @@ class Builder {
     bvh_.hulls.resize(leaves_.size() - 1);
     inner_total_ = n - 1;
     split(0, n, 0);
+    // The split's arrays are done with: freed before the hulls, whose last levels
+    // are the build's peak (28 bytes per leaf).
+    std::vector<int>().swap(order_);
+    std::vector<Vec3>().swap(centres_);
     buildHulls();
     finishHullBvh(leaves_, bvh_);
     return std::move(bvh_);
@@ -167,6 +182,7 @@ class Builder {
     for (std::size_t k = first; k < nodes.size(); k += stride) {
       const HullBvhNode& node = bvh_.nodes[nodes[k]];
       bvh_.hulls[node.polytope] = hullOf(node.left, node.right, keyed, work);
+      releaseUnread(bvh_.hulls[node.polytope]);
       ++inner_done_;
       if (report) reportProgress(false);
     }
@@ -279,6 +295,7 @@ bool finishHullBvh(const std::vector<ConvexPolytope>& leaves, HullBvh& bvh) {
   }
   // With 2n - 1 nodes all reached, the n leaves and n - 1 hulls are each used once.
   if (std::find(node_seen.begin(), node_seen.end(), 0) != node_seen.end()) return false;
+  for (ConvexPolytope& hull : bvh.hulls) releaseUnread(hull);  // a loaded file's
   for (HullBvhNode& node : bvh.nodes) {
     const ConvexPolytope& p = node.leaf() ? leaves[node.polytope] : bvh.hulls[node.polytope];
     node.center = p.center;

@@ -47,7 +47,9 @@ HullBvh buildHullBvh(const std::vector<ConvexPolytope>& leaves, const ProgressCa
 /// Fills `leaf_node`, `depth` and every node's bounding sphere from `nodes`, `hulls`
 /// and `leaves`, after checking the structure: a binary tree rooted at 0 in which
 /// every node is reached once, every leaf index appears once, every hull once.
-/// False (bvh unchanged otherwise) when the structure is invalid.
+/// False (bvh unchanged otherwise) when the structure is invalid. Inner hulls keep
+/// what queries read of them (vertices, original indices, faces, adjacency), not
+/// face sources (all virtual) or vertex-face lists.
 bool finishHullBvh(const std::vector<ConvexPolytope>& leaves, HullBvh& bvh);
 
 }  // namespace sc::detail

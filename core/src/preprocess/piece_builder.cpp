@@ -91,6 +91,7 @@ void buildSoupLeaves(PieceData& data) {
     leaf.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
     leaf.face_source = {static_cast<int>(t), static_cast<int>(t)};
     leaf.finalize(scratch);
+    detail::dropSoupLeafFaceLists(leaf);
     data.patches.push_back(std::move(leaf));
   }
   data.stats.patches = static_cast<int>(data.patches.size());

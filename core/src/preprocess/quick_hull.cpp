@@ -74,11 +74,25 @@ class QuickHull {
     face.normal = twice / length;
     face.offset = face.normal.dot(p_[a]);
     face.outside = -1;
-    face.alive = true;
     face.visit = -1;
-    index = static_cast<int>(faces_.size());
-    faces_.push_back(face);
+    face.serial = serial_++;
+    face.alive = true;
+    if (w_.free_faces.empty()) {
+      index = static_cast<int>(faces_.size());
+      faces_.push_back(face);
+    } else {
+      index = w_.free_faces.back();
+      w_.free_faces.pop_back();
+      faces_[index] = face;
+    }
     return true;
+  }
+
+  /// Queues face `f` for an eye, with its serial to tell it from a later face in
+  /// its slot.
+  void queue(int f) {
+    w_.stack.push_back(f);
+    w_.stack.push_back(faces_[f].serial);
   }
 
   /// Puts `point` into the outside set of the first face of `candidates` it lies
@@ -106,15 +120,18 @@ class QuickHull {
   const std::vector<Vec3>& p_;
   QuickHullWorkspace& w_;
   std::vector<QuickHullWorkspace::Face>& faces_;
+  int serial_ = 0;
   double tol_ = 0.0;
 };
 
 bool QuickHull::build() {
   if (!initialSimplex()) return false;
   while (!w_.stack.empty()) {
+    const int serial = w_.stack.back();
+    w_.stack.pop_back();
     const int f = w_.stack.back();
     w_.stack.pop_back();
-    if (!faces_[f].alive || faces_[f].outside < 0) continue;
+    if (faces_[f].serial != serial || !faces_[f].alive || faces_[f].outside < 0) continue;
     if (!addEye(f)) return false;
   }
   return true;
@@ -123,6 +140,8 @@ bool QuickHull::build() {
 bool QuickHull::initialSimplex() {
   const int n = static_cast<int>(p_.size());
   faces_.clear();
+  w_.free_faces.clear();
+  serial_ = 0;
   w_.stack.clear();
   w_.next_point.assign(p_.size(), -1);
   w_.point_mark.assign(p_.size(), -1);
@@ -201,7 +220,7 @@ bool QuickHull::initialSimplex() {
     assign(i, f, 4);
   }
   for (int i = 0; i < 4; ++i) {
-    if (faces_[f[i]].outside >= 0) w_.stack.push_back(f[i]);
+    if (faces_[f[i]].outside >= 0) queue(f[i]);
   }
   return true;
 }
@@ -293,8 +312,10 @@ bool QuickHull::addEye(int face) {
   }
   for (int i : w_.orphans) assign(i, w_.created.data(), edges);
   for (int f : w_.created) {
-    if (faces_[f].outside >= 0) w_.stack.push_back(f);
+    if (faces_[f].outside >= 0) queue(f);
   }
+  // The removed faces' slots serve later steps (this one read them until now).
+  w_.free_faces.insert(w_.free_faces.end(), w_.visible.begin(), w_.visible.end());
   return true;
 }
 
@@ -302,14 +323,20 @@ bool QuickHull::collect(const std::vector<int>& original, ConvexPolytope& out) {
   w_.vertex_slot.assign(p_.size(), -1);
   w_.slot_point.clear();
   out = ConvexPolytope();
+  // The live faces in the order they were made, whatever slots they took.
+  std::vector<int>& alive = w_.alive;
+  alive.clear();
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f)
+    if (faces_[f].alive) alive.push_back(f);
+  std::sort(alive.begin(), alive.end(),
+            [&](int a, int b) { return faces_[a].serial < faces_[b].serial; });
   // A closed triangulated sphere has F / 2 + 2 vertices: exact sizes, no slack.
-  std::size_t face_count = 0;
-  for (const QuickHullWorkspace::Face& face : faces_) face_count += face.alive ? 1 : 0;
+  const std::size_t face_count = alive.size();
   out.faces.reserve(face_count);
   out.vertices.reserve(face_count / 2 + 2);
   out.original.reserve(face_count / 2 + 2);
-  for (const QuickHullWorkspace::Face& face : faces_) {
-    if (!face.alive) continue;
+  for (const int f : alive) {
+    const QuickHullWorkspace::Face& face = faces_[f];
     // Convex within the tolerance: each neighbour's far corner is below this face.
     for (int k = 0; k < 3; ++k) {
       const QuickHullWorkspace::Face& g = faces_[face.adj[k]];

@@ -20,21 +20,27 @@ struct QuickHullWorkspace {
     Vec3 normal;
     double offset;
     int outside;  ///< first point of its outside set (linked by next_point), or -1
-    bool alive;
     int visit;
+    int serial;  ///< creation order: a reused slot's face is a new face
+    bool alive;
   };
   /// Depth-first walk over the faces an eye sees: face, first edge, edges done.
   struct Frame {
     int face, first, step;
   };
   std::vector<Face> faces;
+  /// Slots of faces removed in earlier steps, reused by new faces: the array holds
+  /// about the live faces, not every face ever made (twenty per point on a large
+  /// hull of near-coplanar points).
+  std::vector<int> free_faces;
   std::vector<Frame> frames;
   std::vector<int> next_point;
   std::vector<int> point_mark;  ///< per point: visit it was last seen on the horizon
-  std::vector<int> stack;
+  std::vector<int> stack;       ///< pairs (face, serial): a reused slot's old entry is stale
   std::vector<int> visible;
   std::vector<int> horizon;  ///< pairs (face, edge)
   std::vector<int> created;
+  std::vector<int> alive;  ///< live faces by serial, for the output
   std::vector<int> orphans;
   std::vector<int> vertex_slot;
   std::vector<int> slot_point;  ///< per output vertex: its point

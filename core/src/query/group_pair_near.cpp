@@ -13,6 +13,11 @@ namespace {
 /// Kept pairs gathered for more than this many times the reach a call needs are
 /// rebuilt, ahead of need, at that reach.
 constexpr double kOversizedReach = 4.0;
+/// A rebuild starts from the last one's front unless the target moved more than this
+/// many times the rebuild's reach since: then the front's fine trail lies far from the
+/// new contact, and the roots' GJK bounds prune more at once (a jump's first free
+/// pose: 42 node pairs from the roots, 152 from the front).
+constexpr double kFrontMoves = 8.0;
 }  // namespace
 
 double GroupPairQuery::nearCoveredReach(const Rigid& o_from_t) const {
@@ -132,6 +137,7 @@ void GroupPairQuery::installNear(const Rigid& pose, double reach) {
 }
 
 void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
+  frontFromPending();
   NearPairs::Pending& pending = near_.pending();
   pending.active = true;
   pending.pose = o_from_t;
@@ -151,18 +157,21 @@ void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
 void GroupPairQuery::seedPendingNear(ContactsPolicy& policy, const Rigid& o_from_t,
                                      std::vector<NodePair>& heap) {
   const double moved = displacementBound(front_.pose(), o_from_t);
-  if (!front_.serves(moved, policy.threshold)) {
+  if (!front_.serves() || moved > kFrontMoves * policy.threshold) {
     front_.begin(true);
     seedTraversal(policy, heap);
     return;
   }
-  // Every entry's bound drops by the motion since the front's pose; those that may now
-  // be within reach are taken again (node pairs with a fresh GJK bound), the others
-  // stay in the front as they are.
+  // Every entry's bound drops by the motion since the front's pose, and its spheres
+  // at this pose bound it too: after a long move (a slide iteration, a jump) the
+  // spheres prune the entries far from the new contact, which the motion alone would
+  // all let through. Those that may now be within reach are taken again (node pairs
+  // with a fresh GJK bound), the others stay in the front with the better bound.
   front_.begin(false);
   heap.clear();
   for (NodePair p : front_.pairs()) {
     p.bound = std::max(0.0, p.bound - moved);
+    if (!policy.prunes(p.bound)) p.bound = std::max(p.bound, sphereBound(p));
     if (policy.prunes(p.bound)) {
       front_.record(p);
       continue;
@@ -173,11 +182,26 @@ void GroupPairQuery::seedPendingNear(ContactsPolicy& policy, const Rigid& o_from
   std::make_heap(heap.begin(), heap.end(), Farther());
 }
 
+void GroupPairQuery::frontFromPending() {
+  // A rebuild given up or replaced before its end still partitions every leaf pair at
+  // its pose: what it pruned (recorded), what is left in its queue and what it found.
+  NearPairs::Pending& pending = near_.pending();
+  if (!pending.active) return;
+  for (const NodePair& p : pending.heap) front_.record(p);
+  for (const LeafContact& c : pending.found) {
+    NodePair p = leafPair(c.t_leaf, c.o_leaf);
+    p.bound = c.gap;
+    front_.record(p);
+  }
+  front_.finish(pending.pose);
+}
+
 TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, double threshold,
                                                      bool finish) {
   NearPairs::Pending& pending = near_.pending();
   if (!pending.active) return {};
   if (!near_.pendingCovers(o_from_t, threshold)) {  // and never will again
+    frontFromPending();
     near_.dropPending();
     return {};
   }

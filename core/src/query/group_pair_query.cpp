@@ -332,7 +332,8 @@ bool GroupPairQuery::refine(const NodePair& p, const Rigid& o_from_piece, double
   return true;
 }
 
-LeafContact GroupPairQuery::exactLeafDistance(const NodePair& p, double bound, bool& beyond) {
+LeafContact GroupPairQuery::exactLeafDistance(const NodePair& p, double bound, bool& beyond,
+                                              bool defer_virtual) {
   const Rigid& o_from_piece = o_from_piece_[p.t_slot];
   LeafContact c = evaluate(p, o_from_piece, bound, beyond);
   if (beyond || c.intersecting || c.gap >= bound) return c;
@@ -349,7 +350,7 @@ LeafContact GroupPairQuery::exactLeafDistance(const NodePair& p, double bound, b
   }
   // A point off the surface (on a virtual feature): the real triangles decide, and
   // they can only be farther (they lie in the hull).
-  beyond = !refine(p, o_from_piece, bound, c);
+  beyond = defer_virtual || !refine(p, o_from_piece, bound, c);
   return c;
 }
 
@@ -402,15 +403,29 @@ bool GroupPairQuery::seedHelps(const Rigid& o_from_t) const {
   return displacementBound(known_pose_, o_from_t) <= reach;
 }
 
+double GroupPairQuery::seedBound(const Rigid& o_from_t, double max_distance) const {
+  if (!known_) return max_distance;
+  const double last = known_gap_ / (1.0 - kKnownGapMargin);
+  return std::min(max_distance, last + displacementBound(known_pose_, o_from_t));
+}
+
 bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafContact& best) {
   counters_ = TraversalCounters();
   placeTargets(o_from_t);
   DistancePolicy policy{*this, max_distance, best};
   if (seedHelps(o_from_t)) {
+    // The distance is at most the last one plus the motion since: a seed beyond that
+    // is not the closest pair. A seed on a virtual feature is not refined here, where
+    // nothing else bounds its refinement on the real triangles (every face pair of two
+    // patches: 2 ms after a 5 cm jump, against a 0.3 ms fresh traversal): the
+    // traversal measures it in its turn, with the bound it has by then.
     bool beyond = false;
-    const LeafContact c =
-        exactLeafDistance(leafPair(seed_.t_leaf, seed_.o_leaf), max_distance, beyond);
-    if (!beyond) policy.offer(c);
+    const LeafContact c = exactLeafDistance(leafPair(seed_.t_leaf, seed_.o_leaf),
+                                            seedBound(o_from_t, max_distance), beyond, true);
+    if (!beyond)
+      policy.offer(c);
+    else
+      seed_ = LeafPair();
   } else {
     seed_ = LeafPair();  // the traversal measures it in its turn
   }

@@ -166,6 +166,8 @@ class GroupPairQuery {
   /// The pending rebuild's first node pairs into `heap`: from front_ when it serves,
   /// else from the roots.
   void seedPendingNear(ContactsPolicy& policy, const Rigid& o_from_t, std::vector<NodePair>& heap);
+  /// The pending rebuild, given up before its end, leaves its partition as the front.
+  void frontFromPending();
   /// Runs the pending rebuild for a while and installs it once done. With `finish`
   /// (the kept pairs no longer cover o_from_t) it runs only as far as o_from_t needs
   /// and installs what it found, going on afterwards. Dropped when it no longer
@@ -180,8 +182,10 @@ class GroupPairQuery {
   /// nearer than `bound`; false (c unchanged) when no triangle pair is.
   bool refine(const NodePair& p, const Rigid& o_from_piece, double bound, LeafContact& c);
   /// GJK on a leaf pair for distance(): refined when its closest feature is virtual
-  /// and it could beat `bound`. `beyond` when it cannot.
-  LeafContact exactLeafDistance(const NodePair& p, double bound, bool& beyond);
+  /// and it could beat `bound`. `beyond` when it cannot, or when its feature is
+  /// virtual and `defer_virtual` (the caller measures it later with a tighter bound).
+  LeafContact exactLeafDistance(const NodePair& p, double bound, bool& beyond,
+                                bool defer_virtual = false);
   template <class Policy>
   void traverse(Policy& policy);
   /// traverse() in two parts: the root pairs into `heap`, then node pairs taken from
@@ -194,6 +198,9 @@ class GroupPairQuery {
                     double until = kInfinity);
   /// True when the last closest leaf pair is worth measuring first at o_from_t.
   bool seedHelps(const Rigid& o_from_t) const;
+  /// Upper bound of the distance at `o_from_t` from the last distance() (its gap plus
+  /// the motion since), at most max_distance.
+  double seedBound(const Rigid& o_from_t, double max_distance) const;
   /// Lower bound of the distance at `o_from_t` from the last distance(), or -inf.
   double knownLowerBound(const Rigid& o_from_t) const;
 

@@ -16,12 +16,6 @@
 namespace sc::test {
 namespace {
 
-ModelPtr modelOf(const MeshData& mesh) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, mesh);
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
 Placement at(const Vec3& c) {
   Placement p;
   p.world_center = c;
@@ -31,9 +25,9 @@ Placement at(const Vec3& c) {
 TEST(ContactPoints, LPrismOnASlabTouchesWithBothPatches) {
   auto prism = support::readOff(std::string(SC_TEST_DATA_DIR) + "/l_prism.off");
   ASSERT_TRUE(prism.ok());
-  const ModelPtr l = modelOf(prism.value());
+  const ModelPtr l = closedModel(prism.value());
   ASSERT_EQ(l->pieces()[0]->stats().patches, 2);
-  const ModelPtr slab = modelOf(boxMesh(Vec3(10, 10, 1)));
+  const ModelPtr slab = closedModel(boxMesh(Vec3(10, 10, 1)));
   const Part a{l.get(), Rigid(), 7}, b{slab.get(), Rigid(), 9};
   // Lowest point of the prism, so it can be set just above the slab's top (z = 1).
   const double bottom = l->bounds().min.z();
@@ -66,7 +60,7 @@ TEST(ContactPoints, LPrismOnASlabTouchesWithBothPatches) {
 }
 
 TEST(ContactPoints, ApartGivesTheClosestPairAndANegativeMarginNothing) {
-  const ModelPtr box = modelOf(boxMesh(Vec3(1, 1, 1)));
+  const ModelPtr box = closedModel(boxMesh(Vec3(1, 1, 1)));
   const Part a{box.get(), Rigid(), 1}, b{box.get(), Rigid(), 2};
   PairTracker tracker;
   DirectedResult out[2];

@@ -75,25 +75,7 @@ TEST(ContactRows, OneRowPerVertexNearTheContactPlane) {
 /// A coin about the z axis: `sides` rim vertices per face, each face a fan, so the
 /// face in contact gives hundreds of rows and its support is found by hill climbing.
 ModelPtr coinModel(int sides, double radius, double half_height) {
-  MeshData m;
-  for (int i = 0; i < sides; ++i) {
-    const double t = 2.0 * kPi * i / sides;
-    const Vec3 rim(radius * std::cos(t), radius * std::sin(t), 0.0);
-    m.vertices.push_back(rim - Vec3(0, 0, half_height));
-    m.vertices.push_back(rim + Vec3(0, 0, half_height));
-  }
-  for (int i = 0; i < sides; ++i) {
-    const int j = (i + 1) % sides;
-    m.triangles.push_back({2 * i, 2 * j, 2 * j + 1});
-    m.triangles.push_back({2 * i, 2 * j + 1, 2 * i + 1});
-    if (i > 0 && j > 0) {
-      m.triangles.push_back({0, 2 * j, 2 * i});
-      m.triangles.push_back({1, 2 * i + 1, 2 * j + 1});
-    }
-  }
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, m);
-  if (!piece.ok()) return nullptr;
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
+  return test::closedModel(test::prismMesh(sides, radius, half_height));
 }
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;

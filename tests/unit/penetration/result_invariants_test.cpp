@@ -226,18 +226,12 @@ TEST(ResultInvariants, EnforceAbortsInDebugAndIsSilentInRelease) {
 
 // Real results: every update of tracked pairs, in every rotation mode, keeps both
 // checks. Ground truth is the contract itself (docs/api.md, "Results").
-ModelPtr modelOf(const MeshData& mesh) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, mesh);
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
-
 TEST(ResultInvariants, TrackedSequencesInEveryRotationModeKeepThem) {
   const std::uint64_t seed = 9090901;
   SCOPED_TRACE(testing::Message() << "seed " << seed);
   test::Rng rng(seed);
-  const ModelPtr box = modelOf(test::boxMesh(Vec3(0.5, 0.4, 0.3)));
-  const ModelPtr tet = modelOf(test::regularTetrahedronMesh(0.8));
+  const ModelPtr box = test::closedModel(test::boxMesh(Vec3(0.5, 0.4, 0.3)));
+  const ModelPtr tet = test::closedModel(test::regularTetrahedronMesh(0.8));
   const Part part_a{box.get(), Rigid(), 1}, part_b{tet.get(), Rigid(), 2};
   int apart = 0, penetrating = 0;
   for (RotationMode mode :

@@ -8,10 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <set>
 #include <vector>
 
+#include "preprocess/cache_file.h"
 #include "preprocess/convex_hull.h"
 #include "preprocess/piece_data.h"
 #include "support/brute_force.h"
@@ -185,6 +187,34 @@ TEST(HullBvh, LeavesOfADecomposedPieceArePatches) {
   for (const ConvexPolytope& hull : data.hierarchy.hulls) {
     for (std::size_t i = 0; i < hull.vertices.size(); ++i)
       ASSERT_EQ(hull.vertices[i], data.mesh.vertices[hull.original[i]]);
+  }
+}
+
+// Inner hulls keep what the traversal reads of them (vertices, faces, adjacency),
+// not face sources (all virtual) or vertex-face lists, built or loaded: those were
+// a tenth of a soup's memory.
+TEST(HullBvh, InnerHullsKeepOnlyWhatTheTraversalReads) {
+  MeshData mesh;
+  ASSERT_NO_FATAL_FAILURE(mesh = test::loadTestMesh("elephant"));
+  const Result<PiecePtr> piece = buildPiece(ModelKind::ClosedPolyhedron, mesh);
+  ASSERT_TRUE(piece.ok()) << piece.status().message();
+  const PieceData& built = piece.value()->internals();
+  PieceData loaded;
+  loaded.kind = built.kind;
+  loaded.mesh = built.mesh;
+  const std::uint64_t key = 7;
+  ASSERT_TRUE(decodePieceCache(encodePieceCache(key, built), key, loaded));
+  for (const PieceData* data : {&built, static_cast<const PieceData*>(&loaded)}) {
+    int faceted = 0;
+    for (const ConvexPolytope& hull : data->hierarchy.hulls) {
+      EXPECT_TRUE(hull.face_source.empty());
+      EXPECT_TRUE(hull.vertex_face_start.empty());
+      EXPECT_TRUE(hull.vertex_faces.empty());
+      if (hull.faces.empty()) continue;
+      ++faceted;
+      EXPECT_EQ(hull.adjacency_start.size(), hull.vertices.size() + 1);
+    }
+    EXPECT_GT(faceted, 0);
   }
 }
 

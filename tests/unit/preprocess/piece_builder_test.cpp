@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "preprocess/cache_file.h"
 #include "preprocess/piece_data.h"
+#include "query/features.h"
 #include "smartcollision/model.h"
 #include "support/test_support.h"
 
@@ -123,6 +125,51 @@ TEST(BuildPiece, ProgressIsReportedFromZeroToOne) {
   EXPECT_EQ(fractions.front(), 0.0);
   EXPECT_EQ(fractions.back(), 1.0);
   ASSERT_TRUE(buildPiece(ModelKind::TriangleSoup, tetrahedron()).ok());  // no callback: fine
+}
+
+// Soup leaves keep no vertex-face lists: the readers' scan of their two faces
+// finds the same features (every seed, every point near the triangle) as the
+// lists would; built and loaded alike.
+TEST(BuildPiece, SoupLeavesWithoutVertexFaceListsGiveTheSameFeatures) {
+  test::Rng rng(21);
+  MeshData soup;
+  for (int t = 0; t < 40; ++t) {
+    const Vec3 c = test::randomDirection(rng);
+    for (int k = 0; k < 3; ++k) soup.vertices.push_back(c + 0.3 * test::randomDirection(rng));
+    soup.triangles.emplace_back(3 * t, 3 * t + 1, 3 * t + 2);
+  }
+  const Result<PiecePtr> piece = buildPiece(ModelKind::TriangleSoup, soup);
+  ASSERT_TRUE(piece.ok());
+  const detail::PieceData& built = piece.value()->internals();
+  detail::PieceData loaded;
+  loaded.kind = built.kind;
+  loaded.mesh = built.mesh;
+  ASSERT_TRUE(detail::decodePieceCache(detail::encodePieceCache(3, built), 3, loaded));
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+    const detail::ConvexPolytope& leaf = built.patches[t];
+    EXPECT_TRUE(leaf.vertex_face_start.empty() && leaf.vertex_faces.empty());
+    EXPECT_TRUE(loaded.patches[t].vertex_face_start.empty());
+    detail::ConvexPolytope listed = leaf;
+    listed.finalize();
+    ASSERT_EQ(listed.vertex_face_start.size(), 4u);
+    const double tolerance = detail::featureTolerance(leaf);
+    for (int k = 0; k < 30; ++k) {
+      // Points on the triangle, its edges and corners, and off it.
+      Vec3 w(test::uniform(rng, 0, 1), test::uniform(rng, 0, 1), test::uniform(rng, 0, 1));
+      if (k % 3 == 0) w[k % 2] = 0.0;
+      if (k % 5 == 0) w = Vec3::Unit(k % 3);
+      const Vec3 p =
+          (w[0] * leaf.vertices[0] + w[1] * leaf.vertices[1] + w[2] * leaf.vertices[2]) / w.sum() +
+          (k % 4 == 0 ? Vec3(0.01 * test::randomDirection(rng)) : Vec3::Zero());
+      const int seeds[3] = {k % 3, (k + 1) % 3, (k + 2) % 3};
+      const int count = 1 + k % 3;
+      const Feature a = detail::closestFeature(leaf, p, seeds, count, tolerance);
+      const Feature b = detail::closestFeature(listed, p, seeds, count, tolerance);
+      EXPECT_EQ(a.type, b.type);
+      EXPECT_EQ(a.is_virtual, b.is_virtual);
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(a.vertices[i], b.vertices[i]);
+    }
+  }
 }
 
 TEST(BuildPiece, SoupAcceptsDegenerateAndOpenTriangles) {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <set>
 #include <utility>
@@ -81,6 +82,23 @@ TEST(QuickHull, SpherePointsAreAllVertices) {
   ASSERT_TRUE(quickHull(points, {}, work, hull));
   EXPECT_EQ(hull.vertices.size(), points.size());
   EXPECT_EQ(hull.faces.size(), 2 * points.size() - 4);
+  expectValidHull(hull, points, rng);
+}
+
+// The removed faces' slots are reused: the workspace holds about the live faces,
+// not every face made (a hierarchy's root on a 1M soup made millions).
+TEST(QuickHull, WorkspaceHoldsAboutTheLiveFaces) {
+  test::Rng rng(11);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 4000; ++i) points.push_back(test::randomDirection(rng));
+  QuickHullWorkspace work;
+  ConvexPolytope hull;
+  ASSERT_TRUE(quickHull(points, {}, work, hull));
+  int made = 0;  // serials count every face made
+  for (const QuickHullWorkspace::Face& f : work.faces) made = std::max(made, f.serial + 1);
+  const std::size_t live = hull.faces.size();
+  EXPECT_GT(static_cast<std::size_t>(made), 2 * live);  // the build did replace faces
+  EXPECT_LE(work.faces.size(), live + live / 4);
   expectValidHull(hull, points, rng);
 }
 

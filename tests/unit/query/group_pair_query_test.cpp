@@ -457,6 +457,42 @@ TEST_F(GroupPairQueryTest, ContactsNearRebuiltFromTheFrontEqualTraversalsFromThe
               steps, with_contacts, near.frontRebuilds());
 }
 
+// Slides broken by moves of one to six times the rebuild's reach (a proxy's slide
+// iterations after a jump): a rebuild starts from the last front, its bounds lowered
+// by the motion and raised again by the node spheres at the new pose, or from what a
+// rebuild given up on the way left; the pairs are a full traversal's throughout.
+TEST_F(GroupPairQueryTest, ContactsNearAfterLongMovesEqualTraversalsFromTheRoots) {
+  GroupPairQuery near, plain;
+  near.bind(target_, opponent_);
+  plain.bind(target_, opponent_);
+  test::Rng rng(67);
+  const double threshold = 0.01, margin = 0.02, reach = threshold + margin;
+  int steps = 0, with_contacts = 0, long_moves = 0, served_after_long_moves = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run) {
+    Rigid pose = randomPose(rng, 0.5);
+    for (int k = 0; k < 60; ++k, ++steps) {
+      SCOPED_TRACE(k);
+      const bool long_move = k % 4 == 3;
+      const double length = long_move ? test::uniform(rng, reach, 6.0 * reach) : 0.003;
+      pose.translation += length * test::randomDirection(rng);
+      const int served = near.frontRebuilds();
+      std::vector<LeafContact> got, want;
+      near.contactsNear(pose, threshold, margin, got);
+      plain.contacts(pose, threshold, want);
+      ASSERT_NO_FATAL_FAILURE(expectSameContacts(got, want));
+      if (!want.empty()) ++with_contacts;
+      long_moves += long_move;
+      served_after_long_moves += long_move && near.frontRebuilds() > served;
+    }
+  }
+  EXPECT_GT(with_contacts, steps / 4);
+  EXPECT_GT(served_after_long_moves, long_moves / 4);
+  std::printf(
+      "[ group pair query ] %d steps, %d with contacts, %d of %d long moves rebuilt "
+      "from a front\n",
+      steps, with_contacts, served_after_long_moves, long_moves);
+}
+
 // One call with a far larger threshold (a long advancement) gathers a large set;
 // the calls after it, with a small threshold, rebuild it at their own reach instead of
 // scanning it on every call, and answer as full traversals throughout.
@@ -565,6 +601,64 @@ TEST_F(GroupPairQueryTest, AfterAJumpTheCarriedQueryAnswersAsAFreshOne) {
   EXPECT_GT(with_contacts, 10);
   std::printf("[ group pair query ] after %d jumps: warm equals fresh; %d poses with contacts\n",
               jumps, with_contacts);
+}
+
+// Two elephants apart, the target orbiting the other and jumping sideways by 1 to 4 %
+// of the size now and then: after a jump the carried query's last closest pair, its
+// seed, is refined on its real triangles (a virtual feature of its patch hull) no
+// more than a fresh query refines it, which measures it only if the traversal's bound
+// lets it; the distances equal a fresh query's.
+TEST_F(GroupPairQueryTest, AfterAJumpTheSeedIsRefinedOnlyAsAFreshQueryWould) {
+  Part target_part{closed_.get(), Rigid(), 7};
+  const GroupView target{&target_part, 1, Placement()};
+  GroupPairQuery warm;
+  warm.bind(target, opponent_);
+  const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
+  const double size = (closed_->bounds().max - closed_->bounds().min).norm();
+  // Offset along u (from the centre) where the target, turned by q, is `gap` apart.
+  auto placed = [&](const Mat3& q, const Vec3& u, double gap) {
+    double s = size;
+    for (int k = 0; k < 60; ++k) {
+      GroupPairQuery fresh;
+      fresh.bind(target, opponent_);
+      LeafContact c;
+      fresh.distance({q, centre + s * u - q * centre}, kInfinity, c);
+      if (c.intersecting) {
+        s += 0.05 * size;
+        continue;
+      }
+      if (std::abs(c.gap - gap) < 0.05 * gap) break;
+      s -= c.gap - gap;
+    }
+    return Rigid{q, centre + s * u - q * centre};
+  };
+  test::Rng rng(71);
+  int jumps = 0, refined_fresh = 0, refined_warm = 0;
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 4 : 16); ++run) {
+    const Mat3 q = test::randomRotation(rng).toRotationMatrix();
+    Vec3 u = test::randomDirection(rng);
+    const Vec3 axis = u.cross(test::randomDirection(rng)).normalized();
+    for (int k = 0; k < 6; ++k) {
+      SCOPED_TRACE(k);
+      const bool jump = k % 3 == 2;
+      u = Eigen::AngleAxisd(jump ? 0.01 * (1 + run % 4) : 0.002, axis) * u;
+      const Rigid pose = placed(q, u, 0.01 * size);
+      GroupPairQuery fresh;
+      fresh.bind(target, opponent_);
+      LeafContact w, f;
+      ASSERT_EQ(warm.distance(pose, kInfinity, w), fresh.distance(pose, kInfinity, f));
+      EXPECT_NEAR(w.gap, f.gap, 1e-12);
+      if (!jump) continue;
+      ++jumps;
+      refined_warm += warm.counters().refined;
+      refined_fresh += fresh.counters().refined;
+      EXPECT_LE(warm.counters().refined, fresh.counters().refined);
+    }
+  }
+  std::printf(
+      "[ group pair query ] %d jumps between elephants: leaf pairs refined %d carried, "
+      "%d fresh\n",
+      jumps, refined_warm, refined_fresh);
 }
 
 // A drifting, slowly turning target (a body pushed along a surface): the kept pairs

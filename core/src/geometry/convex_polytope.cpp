@@ -46,39 +46,54 @@ void ConvexPolytope::finalize(FinalizeScratch& scratch) {
 }
 
 void ConvexPolytope::buildAdjacency(FinalizeScratch& scratch) {
-  // Faces around each vertex (CSR), then each vertex's neighbours read off its
-  // faces, a mark per vertex keeping each once: no sort of every face corner, and
-  // a caller finalizing many polytopes (a cache load: tens of thousands) passes
-  // the same scratch to each.
+  // One pass over the faces files each corner under its vertex: the face (CSR) and
+  // the corner's two other vertices, its candidate neighbours. Each vertex's
+  // candidates then lose their repeats (a mark per vertex; on a closed surface each
+  // neighbour comes twice) and are sorted in place. Walking each vertex's faces
+  // instead visits every face three times; a cache load finalizes tens of
+  // thousands of polytopes with the same scratch. Raw pointers: every array here
+  // holds ints, so through the vectors each store would reload every bound.
   const int n = static_cast<int>(vertices.size());
-  vertex_face_start.assign(n + 1, 0);
+  const int face_count = static_cast<int>(faces.size());
+  vertex_face_start.assign(static_cast<std::size_t>(n) + 1, 0);
+  int* const start = vertex_face_start.data();
   for (const Tri& f : faces)
-    for (int k = 0; k < 3; ++k) ++vertex_face_start[f[k] + 1];
-  for (int v = 0; v < n; ++v) vertex_face_start[v + 1] += vertex_face_start[v];
-  std::vector<int>& fill = scratch.fill;
-  std::vector<int>& mark = scratch.mark;
-  std::vector<int>& entries = scratch.entries;
-  fill.assign(vertex_face_start.begin(), vertex_face_start.end() - 1);
-  vertex_faces.resize(static_cast<std::size_t>(vertex_face_start[n]));
-  for (int f = 0; f < static_cast<int>(faces.size()); ++f)
-    for (int k = 0; k < 3; ++k) vertex_faces[static_cast<std::size_t>(fill[faces[f][k]]++)] = f;
-  mark.assign(static_cast<std::size_t>(n), -1);
-  entries.clear();
+    for (int k = 0; k < 3; ++k) ++start[f[k] + 1];
+  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+  const int corners = start[n];
+  scratch.fill.assign(start, start + n);
+  scratch.entries.resize(2 * static_cast<std::size_t>(corners));
+  vertex_faces.resize(static_cast<std::size_t>(corners));
+  int* const fill = scratch.fill.data();
+  int* const entries = scratch.entries.data();
+  int* const around = vertex_faces.data();
+  for (int f = 0; f < face_count; ++f) {
+    const int a = faces[f][0], b = faces[f][1], c = faces[f][2];
+    const int sa = fill[a]++, sb = fill[b]++, sc = fill[c]++;
+    around[sa] = around[sb] = around[sc] = f;
+    entries[2 * sa] = b, entries[2 * sa + 1] = c;
+    entries[2 * sb] = c, entries[2 * sb + 1] = a;
+    entries[2 * sc] = a, entries[2 * sc + 1] = b;
+  }
+  scratch.mark.assign(static_cast<std::size_t>(n), -1);
+  int* const mark = scratch.mark.data();
   adjacency_start.resize(static_cast<std::size_t>(n) + 1);
   adjacency_start[0] = 0;
+  int kept = 0;  // candidates kept so far, compacted to the front of `entries`
   for (int v = 0; v < n; ++v) {
-    const std::size_t first = entries.size();
-    for (int k = vertex_face_start[v]; k < vertex_face_start[v + 1]; ++k) {
-      for (const int w : faces[static_cast<std::size_t>(vertex_faces[k])]) {
-        if (w == v || mark[w] == v) continue;
-        mark[w] = v;
-        entries.push_back(w);
-      }
+    const int first = kept;
+    const int end = 2 * start[v + 1];
+    mark[v] = v;  // v is no neighbour of its own
+    for (int k = 2 * start[v]; k < end; ++k) {
+      const int w = entries[k];
+      if (mark[w] == v) continue;
+      mark[w] = v;
+      entries[kept++] = w;
     }
-    sortSmall(entries.data() + first, entries.data() + entries.size());
-    adjacency_start[v + 1] = static_cast<int>(entries.size());
+    sortSmall(entries + first, entries + kept);
+    adjacency_start[v + 1] = kept;
   }
-  adjacency.assign(entries.begin(), entries.end());
+  adjacency.assign(entries, entries + kept);
 }
 
 int ConvexPolytope::support(const Vec3& direction, int& hint) const {

@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <thread>
 #include <type_traits>
 #include <utility>
@@ -177,15 +179,21 @@ class Reader {
   bool ok_ = true;
 };
 
-/// Reads one polytope; vertex `original` must index the mesh's vertices and face
+/// The input's counts, all that reading the records needs of it.
+struct InputCounts {
+  std::int64_t vertices = 0;
+  std::int64_t triangles = 0;
+};
+
+/// Reads one polytope; vertex `original` must index the input's vertices and face
 /// sources its triangles (or be -1). Records are read straight from the bytes once
-/// their count is known to fit. Not finalized: finalizeAll does that for all.
-bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
+/// their count is known to fit. Not finalized: finalizeAndCheck does that for all.
+bool getPolytope(Reader& r, const InputCounts& input, ConvexPolytope& p) {
   std::size_t nv = 0, nf = 0;
   if (!r.getCount(kVertexBytes, nv) || nv == 0) return false;
   p.vertices.resize(nv);
   p.original.resize(nv);
-  const auto vertex_limit = static_cast<std::int64_t>(mesh.vertices.size());
+  const std::int64_t vertex_limit = input.vertices;
   const std::uint8_t* at = r.take(nv * kVertexBytes);
   for (std::size_t i = 0; i < nv; ++i, at += kVertexBytes) {
     double xyz[3];
@@ -201,7 +209,7 @@ bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
   if (!r.getCount(kFaceBytes, nf)) return false;
   p.faces.resize(nf);
   p.face_source.resize(nf);
-  const auto triangle_limit = static_cast<std::int64_t>(mesh.triangles.size());
+  const std::int64_t triangle_limit = input.triangles;
   at = r.take(nf * kFaceBytes);
   for (std::size_t f = 0; f < nf; ++f, at += kFaceBytes) {
     std::int32_t record[4];
@@ -216,37 +224,15 @@ bool getPolytope(Reader& r, const MeshData& mesh, ConvexPolytope& p) {
   return true;
 }
 
-bool getPolytopes(Reader& r, const MeshData& mesh, std::vector<ConvexPolytope>& out) {
+bool getPolytopes(Reader& r, const InputCounts& input, std::vector<ConvexPolytope>& out) {
   std::size_t n = 0;
   // Every polytope takes at least its two counts and one vertex.
   if (!r.getCount(2 * sizeof(std::uint64_t) + kVertexBytes, n)) return false;
   out.resize(n);
   for (ConvexPolytope& p : out) {
-    if (!getPolytope(r, mesh, p)) return false;
+    if (!getPolytope(r, input, p)) return false;
   }
   return true;
-}
-
-/// finalize() on every polytope of `a` then `b`, on up to `threads` threads taking
-/// blocks of polytopes in turn; each polytope's result depends on it alone.
-void finalizeAll(std::vector<ConvexPolytope>& a, std::vector<ConvexPolytope>& b, int threads) {
-  constexpr std::size_t kBlock = 64;
-  const std::size_t total = a.size() + b.size();
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    FinalizeScratch scratch;
-    for (std::size_t from = next.fetch_add(kBlock); from < total; from = next.fetch_add(kBlock)) {
-      for (std::size_t i = from; i < std::min(total, from + kBlock); ++i)
-        (i < a.size() ? a[i] : b[i - a.size()]).finalize(scratch);
-    }
-  };
-  const std::size_t helpers =
-      std::min(static_cast<std::size_t>(std::max(threads, 1) - 1), total / kBlock);
-  std::vector<std::thread> pool;
-  pool.reserve(helpers);
-  for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
 }
 
 struct Header {
@@ -297,23 +283,69 @@ bool verticesAreInput(const MeshData& mesh, const ConvexPolytope& p) {
   return true;
 }
 
-/// Every real face is the input triangle it names (same vertices), and every input
-/// triangle is a real face of some leaf: the leaves cover the surface.
-bool facesCoverInput(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves) {
+/// Every real face is the input triangle it names (same vertices).
+bool realFacesAreInput(const MeshData& mesh, const ConvexPolytope& p) {
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    const int source = p.face_source[f];
+    if (source < 0) continue;
+    Tri face(p.original[p.faces[f][0]], p.original[p.faces[f][1]], p.original[p.faces[f][2]]);
+    Tri input = mesh.triangles[static_cast<std::size_t>(source)];
+    std::sort(face.data(), face.data() + 3);
+    std::sort(input.data(), input.data() + 3);
+    if (face != input) return false;
+  }
+  return true;
+}
+
+/// Every input triangle is a real face of some leaf: the leaves cover the surface.
+bool leavesCoverInput(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves) {
   std::vector<char> covered(mesh.triangles.size(), 0);
   for (const ConvexPolytope& p : leaves) {
-    for (std::size_t f = 0; f < p.faces.size(); ++f) {
-      const int source = p.face_source[f];
-      if (source < 0) continue;
-      Tri face(p.original[p.faces[f][0]], p.original[p.faces[f][1]], p.original[p.faces[f][2]]);
-      Tri input = mesh.triangles[static_cast<std::size_t>(source)];
-      std::sort(face.data(), face.data() + 3);
-      std::sort(input.data(), input.data() + 3);
-      if (face != input) return false;
-      covered[static_cast<std::size_t>(source)] = 1;
+    for (const int source : p.face_source) {
+      if (source >= 0) covered[static_cast<std::size_t>(source)] = 1;
     }
   }
   return std::find(covered.begin(), covered.end(), 0) == covered.end();
+}
+
+/// What the per-polytope checks found, a flag per kind: the problem reported then
+/// does not depend on which thread saw which polytope.
+struct PolytopeProblems {
+  std::atomic<bool> leaf_vertex{false};
+  std::atomic<bool> hull_vertex{false};
+  std::atomic<bool> real_face{false};
+};
+
+/// finalize() and the per-polytope checks against `mesh` on every leaf then every
+/// hull, on up to `threads` threads taking blocks of polytopes in turn; each
+/// polytope's result depends on it alone.
+void finalizeAndCheck(std::vector<ConvexPolytope>& leaves, std::vector<ConvexPolytope>& hulls,
+                      const MeshData& mesh, PolytopeProblems& problems, int threads) {
+  constexpr std::size_t kBlock = 64;
+  const std::size_t total = leaves.size() + hulls.size();
+  std::atomic<std::size_t> next{0};
+  auto one = [&](std::size_t i, FinalizeScratch& scratch) {
+    const bool leaf = i < leaves.size();
+    ConvexPolytope& p = leaf ? leaves[i] : hulls[i - leaves.size()];
+    p.finalize(scratch);
+    if (!verticesAreInput(mesh, p))
+      (leaf ? problems.leaf_vertex : problems.hull_vertex).store(true, std::memory_order_relaxed);
+    if (leaf && !realFacesAreInput(mesh, p))
+      problems.real_face.store(true, std::memory_order_relaxed);
+  };
+  auto work = [&] {
+    FinalizeScratch scratch;
+    for (std::size_t from = next.fetch_add(kBlock); from < total; from = next.fetch_add(kBlock)) {
+      for (std::size_t i = from; i < std::min(total, from + kBlock); ++i) one(i, scratch);
+    }
+  };
+  const std::size_t helpers =
+      std::min(static_cast<std::size_t>(std::max(threads, 1) - 1), total / kBlock);
+  std::vector<std::thread> pool;
+  pool.reserve(helpers);
+  for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
 }
 
 /// Every inner node's box contains its children's (to rounding of the hull build):
@@ -333,17 +365,13 @@ bool innerHullsContainChildren(const std::vector<ConvexPolytope>& leaves, const 
   return true;
 }
 
-/// What makes decoded leaves and hierarchy (structurally valid) not a preprocessing
-/// of `mesh`, or null. Linear in the decoded size.
+/// What makes finalized leaves and hierarchy (structurally valid) not a
+/// preprocessing of `mesh`, or null. Linear in the decoded size.
 const char* contentProblem(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves,
-                           const HullBvh& bvh) {
-  for (const ConvexPolytope& p : leaves) {
-    if (!verticesAreInput(mesh, p)) return "a leaf vertex is not the input vertex it names";
-  }
-  for (const ConvexPolytope& p : bvh.hulls) {
-    if (!verticesAreInput(mesh, p)) return "a hull vertex is not the input vertex it names";
-  }
-  if (!facesCoverInput(mesh, leaves))
+                           const HullBvh& bvh, const PolytopeProblems& problems) {
+  if (problems.leaf_vertex) return "a leaf vertex is not the input vertex it names";
+  if (problems.hull_vertex) return "a hull vertex is not the input vertex it names";
+  if (problems.real_face || !leavesCoverInput(mesh, leaves))
     return "its real faces are not the input triangles, or do not cover them";
   Aabb box;
   for (const Vec3& v : mesh.vertices) box.extend(v);
@@ -353,38 +381,57 @@ const char* contentProblem(const MeshData& mesh, const std::vector<ConvexPolytop
   return nullptr;
 }
 
-/// Decodes the payload of a file whose header and checksum passed into `data`; null
-/// on success, else why it is refused (`data` unchanged).
-const char* decodePayload(const std::vector<std::uint8_t>& bytes, PieceData& data, int threads) {
+/// Reads the records of a payload whose header and checksum passed; null on
+/// success, else why it is refused.
+const char* readPayload(const std::uint8_t* payload, std::size_t size, const InputCounts& input,
+                        PieceCacheRecords& out) {
   const char* const malformed = "its payload is malformed";
-  Reader r(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize);
+  Reader r(payload, size);
   std::uint8_t convex = 0;
   std::int32_t virtual_faces = 0;
   if (!r.get(convex) || convex > 1 || !r.get(virtual_faces) || virtual_faces < 0) return malformed;
-  std::vector<ConvexPolytope> patches;
-  if (!getPolytopes(r, data.mesh, patches)) return malformed;
-  HullBvh bvh;
+  out.convex = convex != 0;
+  out.virtual_faces = virtual_faces;
+  if (!getPolytopes(r, input, out.patches)) return malformed;
   std::size_t node_count = 0;
   if (!r.getCount(kNodeBytes, node_count)) return malformed;
-  bvh.nodes.resize(node_count);
-  for (HullBvhNode& n : bvh.nodes) {
+  out.hierarchy.nodes.resize(node_count);
+  for (HullBvhNode& n : out.hierarchy.nodes) {
     std::int32_t left = -1, right = -1, polytope = -1;
     if (!r.get(left) || !r.get(right) || !r.get(polytope)) return malformed;
     n.left = left;
     n.right = right;
     n.polytope = polytope;
   }
-  if (!getPolytopes(r, data.mesh, bvh.hulls) || !r.done()) return malformed;
-  finalizeAll(patches, bvh.hulls, threads);
-  if (data.kind == ModelKind::TriangleSoup) {
-    for (ConvexPolytope& leaf : patches) dropSoupLeafFaceLists(leaf);
-  }
-  if (!finishHullBvh(patches, bvh)) return "its hierarchy is not a tree over its leaves";
-  if (const char* problem = contentProblem(data.mesh, patches, bvh)) return problem;
-  data.patches = std::move(patches);
-  data.hierarchy = std::move(bvh);
-  fillStats(data, convex != 0, virtual_faces);
+  if (!getPolytopes(r, input, out.hierarchy.hulls) || !r.done()) return malformed;
   return nullptr;
+}
+
+/// The records of a complete file of this version and kind for this input with a
+/// matching checksum into `out`; false otherwise, with `*rejected` set (if given)
+/// when the checksum passed but the records are malformed.
+bool readBytes(const std::uint8_t* bytes, std::size_t size, std::uint64_t input_hash,
+               ModelKind kind, const InputCounts& input, PieceCacheRecords& out,
+               std::string* rejected) {
+  Reader head(bytes, size);
+  Header h;
+  if (!readHeader(head, h) || !headerMatches(h, input_hash, kind, size)) return false;
+  const std::uint8_t* payload = bytes + kHeaderSize;
+  if (payloadChecksum(payload, size - kHeaderSize) != h.checksum) return false;
+  // Past the checksum the file is intact: what follows finds a file that was not
+  // written by this library for this input (forged, or written by a bug).
+  PieceCacheRecords records;
+  if (const char* problem = readPayload(payload, size - kHeaderSize, input, records)) {
+    if (rejected != nullptr) *rejected = problem;
+    return false;
+  }
+  out = std::move(records);
+  return true;
+}
+
+InputCounts countsOf(const MeshData& mesh) {
+  return {static_cast<std::int64_t>(mesh.vertices.size()),
+          static_cast<std::int64_t>(mesh.triangles.size())};
 }
 
 }  // namespace
@@ -484,19 +531,33 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
   return bytes;
 }
 
+bool acceptPieceCacheRecords(PieceCacheRecords&& records, PieceData& data, std::string* rejected,
+                             int threads) {
+  PolytopeProblems problems;
+  finalizeAndCheck(records.patches, records.hierarchy.hulls, data.mesh, problems, threads);
+  if (data.kind == ModelKind::TriangleSoup) {
+    for (ConvexPolytope& leaf : records.patches) dropSoupLeafFaceLists(leaf);
+  }
+  const char* problem =
+      finishHullBvh(records.patches, records.hierarchy)
+          ? contentProblem(data.mesh, records.patches, records.hierarchy, problems)
+          : "its hierarchy is not a tree over its leaves";
+  if (problem != nullptr) {
+    if (rejected != nullptr) *rejected = problem;
+    return false;
+  }
+  data.patches = std::move(records.patches);
+  data.hierarchy = std::move(records.hierarchy);
+  fillStats(data, records.convex, records.virtual_faces);
+  return true;
+}
+
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
                       PieceData& data, std::string* rejected, int threads) {
-  Reader head(bytes.data(), bytes.size());
-  Header h;
-  if (!readHeader(head, h) || !headerMatches(h, input_hash, data.kind, bytes.size())) return false;
-  const std::uint8_t* payload = bytes.data() + kHeaderSize;
-  if (payloadChecksum(payload, bytes.size() - kHeaderSize) != h.checksum) return false;
-  // Past the checksum the file is intact: what follows finds a file that was not
-  // written by this library for this input (forged, or written by a bug).
-  const char* problem = decodePayload(bytes, data, threads);
-  if (problem == nullptr) return true;
-  if (rejected != nullptr) *rejected = problem;
-  return false;
+  PieceCacheRecords records;
+  return readBytes(bytes.data(), bytes.size(), input_hash, data.kind, countsOf(data.mesh), records,
+                   rejected) &&
+         acceptPieceCacheRecords(std::move(records), data, rejected, threads);
 }
 
 namespace {
@@ -521,27 +582,56 @@ bool existsAsNonRegular(const std::string& path) {
 
 }  // namespace
 
-bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
-                    std::string* rejected, int threads) {
+bool readPieceCacheRecords(const std::string& path,
+                           const std::function<std::uint64_t()>& input_hash, ModelKind kind,
+                           std::size_t vertex_count, std::size_t triangle_count,
+                           PieceCacheRecords& out, std::string* rejected) {
   std::FILE* file = openRegularFile(path);
   if (file == nullptr) return false;
-  // The header first: a foreign or stale file of any size is rejected unread.
-  std::vector<std::uint8_t> bytes(kHeaderSize);
+  // The header first: a file of another version or kind is rejected unread. The
+  // input's hash is asked for last, so that its computation can overlap the read.
+  std::uint8_t header[kHeaderSize];
   bool ok = std::fseek(file, 0, SEEK_END) == 0;
   const long size = ok ? std::ftell(file) : -1;
   ok = ok && size >= static_cast<long>(kHeaderSize) && std::fseek(file, 0, SEEK_SET) == 0 &&
-       std::fread(bytes.data(), 1, kHeaderSize, file) == kHeaderSize;
+       std::fread(header, 1, kHeaderSize, file) == kHeaderSize;
   Header h;
-  Reader head(bytes.data(), bytes.size());
+  Reader head(header, kHeaderSize);
   ok = ok && readHeader(head, h) &&
-       headerMatches(h, input_hash, data.kind, static_cast<std::size_t>(size));
+       headerMatches(h, h.input_hash, kind, static_cast<std::size_t>(size));
+  // Not zero-filled first: every byte is read over at once (a vector would clear
+  // them all, a pass as long as the read).
+  std::unique_ptr<std::uint8_t[]> bytes;
   if (ok) {
-    bytes.resize(static_cast<std::size_t>(size));
-    ok = std::fread(bytes.data() + kHeaderSize, 1, bytes.size() - kHeaderSize, file) ==
-         bytes.size() - kHeaderSize;
+    const auto total = static_cast<std::size_t>(size);
+    bytes.reset(new std::uint8_t[total]);
+    std::memcpy(bytes.get(), header, kHeaderSize);
+    ok = std::fread(bytes.get() + kHeaderSize, 1, total - kHeaderSize, file) == total - kHeaderSize;
   }
   std::fclose(file);
-  return ok && decodePieceCache(bytes, input_hash, data, rejected, threads);
+  const InputCounts input{static_cast<std::int64_t>(vertex_count),
+                          static_cast<std::int64_t>(triangle_count)};
+  PieceCacheRecords records;
+  std::string problem;
+  ok = ok && readBytes(bytes.get(), static_cast<std::size_t>(size), h.input_hash, kind, input,
+                       records, &problem);
+  // Another input's file (stale, foreign) is rebuilt without a word, however it reads.
+  if (input_hash() != h.input_hash) return false;
+  if (!ok) {
+    if (rejected != nullptr && !problem.empty()) *rejected = problem;
+    return false;
+  }
+  out = std::move(records);
+  return true;
+}
+
+bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
+                    std::string* rejected, int threads) {
+  PieceCacheRecords records;
+  return readPieceCacheRecords(
+             path, [input_hash] { return input_hash; }, data.kind, data.mesh.vertices.size(),
+             data.mesh.triangles.size(), records, rejected) &&
+         acceptPieceCacheRecords(std::move(records), data, rejected, threads);
 }
 
 Status savePieceCache(const std::string& path, std::uint64_t input_hash, const PieceData& data) {

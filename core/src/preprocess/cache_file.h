@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,35 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
                       PieceData& data, std::string* rejected = nullptr, int threads = 1);
 
-/// decodePieceCache on the file at `path`; false when it is missing or unreadable.
+/// A file's records as read, before they are finalized and checked against the
+/// input's contents.
+struct PieceCacheRecords {
+  bool convex = false;
+  int virtual_faces = 0;
+  std::vector<ConvexPolytope> patches;
+  HullBvh hierarchy;  ///< nodes and hulls only: finishHullBvh not yet run
+};
+
+/// The first half of loadPieceCache: the file's header, checksum and records, every
+/// index checked against the input's counts only. It reads nothing of the input's
+/// contents, so it may run while another thread hashes, validates and orients them:
+/// `input_hash` is called once, after the file is read (it may wait for that
+/// thread), and a file written for another input is then dropped. False when the
+/// file is missing, unreadable, stale, foreign or damaged, or (then setting
+/// `*rejected`) its records are malformed.
+bool readPieceCacheRecords(const std::string& path,
+                           const std::function<std::uint64_t()>& input_hash, ModelKind kind,
+                           std::size_t vertex_count, std::size_t triangle_count,
+                           PieceCacheRecords& out, std::string* rejected = nullptr);
+
+/// The second half: finalizes the records on up to `threads` threads, checks them
+/// against `data.mesh` as decodePieceCache does, and moves them into `data`; false
+/// (setting `*rejected`, `data` unchanged) when they are not its preprocessing.
+bool acceptPieceCacheRecords(PieceCacheRecords&& records, PieceData& data,
+                             std::string* rejected = nullptr, int threads = 1);
+
+/// decodePieceCache on the file at `path` (readPieceCacheRecords, then
+/// acceptPieceCacheRecords); false when it is missing or unreadable.
 bool loadPieceCache(const std::string& path, std::uint64_t input_hash, PieceData& data,
                     std::string* rejected = nullptr, int threads = 1);
 

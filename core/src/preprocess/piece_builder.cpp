@@ -15,6 +15,8 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
+#include <future>
 #include <memory>
 #include <string>
 #include <thread>
@@ -156,6 +158,71 @@ Status refusedCache(const std::string& path, const std::string& reason, const St
   return Status(ErrorCode::File, std::move(message));
 }
 
+/// A closed piece's cache key (the hash of the input as given) and validation on this
+/// thread, the cache file read on a second one beside them: reading the records
+/// needs only the input's counts, and the key only at the end. An exception on
+/// either side (an allocation a file's size asks for) is thrown again after the
+/// join: none escapes the thread, leaves it running or leaves it waiting.
+Status hashAndValidateBesideRead(MeshData& mesh, const std::string& path, std::uint64_t& key,
+                                 bool& flipped, detail::PieceCacheRecords& records,
+                                 bool& have_records, std::string& rejected) {
+  constexpr ModelKind kind = ModelKind::ClosedPolyhedron;
+  const std::size_t vertex_count = mesh.vertices.size();
+  const std::size_t triangle_count = mesh.triangles.size();
+  std::promise<std::uint64_t> hashed;
+  std::future<std::uint64_t> hash = hashed.get_future();
+  std::exception_ptr read_failure, failure;
+  std::thread reader([&] {
+    try {
+      have_records = detail::readPieceCacheRecords(
+          path, [&hash] { return hash.get(); }, kind, vertex_count, triangle_count, records,
+          &rejected);
+    } catch (...) {
+      read_failure = std::current_exception();
+    }
+  });
+  Status valid;
+  try {
+    key = detail::pieceInputHash(kind, mesh);
+    hashed.set_value(key);
+    valid = detail::validateClosed(mesh, flipped);
+  } catch (...) {
+    failure = std::current_exception();
+    try {
+      hashed.set_exception(failure);  // the reader stops waiting for the key
+    } catch (const std::future_error&) {
+    }
+  }
+  reader.join();
+  if (failure) std::rethrow_exception(failure);
+  if (read_failure) std::rethrow_exception(read_failure);
+  return valid;
+}
+
+/// Computes the cache key (`key`, with a cache file), validates a closed piece
+/// (orienting it outward) and reads the cache file's records (`have_records`). On
+/// two or more threads the read runs beside the rest: on a cache hit the
+/// validation is most of what is left besides the file.
+Status validateAndReadCache(ModelKind kind, MeshData& mesh, const BuildOptions& options,
+                            std::uint64_t& key, bool& flipped, detail::PieceCacheRecords& records,
+                            bool& have_records, std::string& rejected) {
+  const std::string& path = options.cache_file;
+  const bool closed = kind == ModelKind::ClosedPolyhedron;
+  if (!path.empty() && closed && threadCount(options) >= 2)
+    return hashAndValidateBesideRead(mesh, path, key, flipped, records, have_records, rejected);
+  // The key is the input as given, before any orientation fix.
+  key = path.empty() ? 0 : detail::pieceInputHash(kind, mesh);
+  if (closed) {
+    if (Status s = detail::validateClosed(mesh, flipped); !s.ok()) return s;
+  }
+  if (!path.empty()) {
+    have_records = detail::readPieceCacheRecords(
+        path, [key] { return key; }, kind, mesh.vertices.size(), mesh.triangles.size(), records,
+        &rejected);
+  }
+  return Status::success();
+}
+
 }  // namespace
 
 Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& options) {
@@ -167,23 +234,24 @@ Result<PiecePtr> buildPiece(ModelKind kind, MeshData mesh, const BuildOptions& o
   if (options.progress) options.progress(0.0, "validating piece");
   if (Status s = detail::validateArrays(mesh); !s.ok()) return s;
 
-  // The cache key is the input as given, before any orientation fix.
   const bool use_cache = !options.cache_file.empty();
-  const std::uint64_t key = use_cache ? detail::pieceInputHash(kind, mesh) : 0;
-
+  std::uint64_t key = 0;
   auto data = std::make_unique<PieceData>();
   data->kind = kind;
   data->stats.vertices = static_cast<int>(mesh.vertices.size());
   data->stats.triangles = static_cast<int>(mesh.triangles.size());
-  if (kind == ModelKind::ClosedPolyhedron) {
-    if (Status s = detail::validateClosed(mesh, data->stats.flipped); !s.ok()) return s;
-  }
+  std::string rejected;
+  detail::PieceCacheRecords records;
+  bool have_records = false;
+  if (Status s = validateAndReadCache(kind, mesh, options, key, data->stats.flipped, records,
+                                      have_records, rejected);
+      !s.ok())
+    return s;
   data->mesh = std::move(mesh);
   data->bounds = referencedBounds(data->mesh);
   Status file_status;
-  std::string rejected;
-  if (use_cache &&
-      detail::loadPieceCache(options.cache_file, key, *data, &rejected, threadCount(options))) {
+  if (have_records &&
+      detail::acceptPieceCacheRecords(std::move(records), *data, &rejected, threadCount(options))) {
     data->stats.from_cache = true;
   } else {
     if (cancelled(options)) return cancelledStatus();

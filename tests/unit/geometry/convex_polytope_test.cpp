@@ -111,6 +111,47 @@ TEST(ConvexPolytope, FinalizeAdjacencyEqualsTheFaceEdges) {
   }
 }
 
+// Faces that are not a closed, consistently wound surface (one triangle, a hull with
+// a face turned over, random triangles) take the slower path; the lists are still
+// exactly the vertices each vertex shares a face with, sorted and once each.
+TEST(ConvexPolytope, FinalizeAdjacencyOfOpenOrMiswoundFacesEqualsTheFaceEdges) {
+  test::Rng rng(79);
+  std::vector<ConvexPolytope> cases;
+  ConvexPolytope one;
+  one.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(5, 5, 5)};
+  one.faces = {Tri(0, 1, 2)};
+  cases.push_back(one);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 40; ++i) points.push_back(test::randomDirection(rng));
+  ConvexPolytope turned = test::hullOf(points);
+  std::swap(turned.faces[3][1], turned.faces[3][2]);
+  cases.push_back(turned);
+  std::uniform_int_distribution<int> pick(0, 11);
+  for (int trial = 0; trial < 20; ++trial) {
+    ConvexPolytope random;
+    random.vertices.assign(12, Vec3::Zero());
+    for (int f = 0; f < 3 + trial; ++f) random.faces.emplace_back(pick(rng), pick(rng), pick(rng));
+    cases.push_back(random);
+  }
+  for (ConvexPolytope& poly : cases) {
+    poly.finalize();
+    const int n = static_cast<int>(poly.vertices.size());
+    std::vector<std::set<int>> neighbours(n);
+    for (const Tri& f : poly.faces) {
+      for (int k = 0; k < 3; ++k) {
+        for (int j = 0; j < 3; ++j)
+          if (f[j] != f[k]) neighbours[f[k]].insert(f[j]);
+      }
+    }
+    ASSERT_EQ(poly.adjacency_start.size(), static_cast<std::size_t>(n + 1));
+    for (int v = 0; v < n; ++v) {
+      const std::vector<int> got(poly.adjacency.begin() + poly.adjacency_start[v],
+                                 poly.adjacency.begin() + poly.adjacency_start[v + 1]);
+      EXPECT_EQ(got, std::vector<int>(neighbours[v].begin(), neighbours[v].end())) << v;
+    }
+  }
+}
+
 // A bare point set (no faces, as the hierarchy keeps small inner nodes) keeps no
 // adjacency arrays; its support is still the brute-force maximum, past the size at
 // which faced polytopes hill-climb.

@@ -257,6 +257,57 @@ TEST(CacheFileMesh, DecodedOnOneAndTwoThreadsEqualsTheBuild) {
   }
 }
 
+// On two threads buildPiece reads the file's records beside the input's validation,
+// which may turn the input outward: loads on one and two threads give the build's
+// piece, for a torus given inside out as well.
+TEST(CacheFileMesh, LoadedBesideTheValidationEqualsTheBuild) {
+  for (const bool inside_out : {false, true}) {
+    SCOPED_TRACE(inside_out ? "inside out" : "outward");
+    MeshData torus = test::torusMesh(1.0, 0.3, 40, 20);
+    if (inside_out) {
+      for (Tri& t : torus.triangles) std::swap(t[1], t[2]);
+    }
+    TempFile file("sc_cache_test", "beside.bvh");
+    BuildOptions options;
+    options.cache_file = file.path;
+    options.threads = 1;
+    const Result<PiecePtr> built = buildPiece(ModelKind::ClosedPolyhedron, torus, options);
+    ASSERT_TRUE(built.ok()) << built.status().message();
+    ASSERT_FALSE(built.value()->stats().from_cache);
+    EXPECT_EQ(built.value()->stats().flipped, inside_out);
+    for (const int threads : {1, 2}) {
+      options.threads = threads;
+      const Result<PiecePtr> loaded = buildPiece(ModelKind::ClosedPolyhedron, torus, options);
+      ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+      EXPECT_TRUE(loaded.value()->stats().from_cache) << threads;
+      const PieceData& got = loaded.value()->internals();
+      EXPECT_EQ(got.mesh.triangles, built.value()->internals().mesh.triangles) << threads;
+      ASSERT_NO_FATAL_FAILURE(expectSamePiece(built.value()->internals(), got)) << threads;
+    }
+  }
+}
+
+// A file that matches the input does not vouch for it: an open mesh is refused with
+// its validation error on one and two threads, though its file is read beside.
+TEST(CacheFileMesh, InvalidInputIsRefusedWhateverItsFile) {
+  const MeshData torus = test::torusMesh(1.0, 0.3, 40, 20);
+  const Result<PiecePtr> built = buildPiece(ModelKind::ClosedPolyhedron, torus);
+  ASSERT_TRUE(built.ok()) << built.status().message();
+  MeshData open = torus;
+  open.triangles.back() = open.triangles.front();  // same counts, one hole, one double
+  TempFile file("sc_cache_test", "invalid.bvh");
+  writeBytes(file.path, encodePieceCache(pieceInputHash(ModelKind::ClosedPolyhedron, open),
+                                         built.value()->internals()));
+  for (const int threads : {1, 2}) {
+    BuildOptions options;
+    options.cache_file = file.path;
+    options.threads = threads;
+    const Result<PiecePtr> refused = buildPiece(ModelKind::ClosedPolyhedron, open, options);
+    ASSERT_FALSE(refused.ok()) << threads;
+    EXPECT_EQ(refused.status().code(), ErrorCode::InvalidGeometry) << threads;
+  }
+}
+
 TEST_F(CacheFile, RoundTripLoadsTheSamePreprocessing) {
   TempFile file("sc_cache_test", "roundtrip.bvh");
   const Result<PiecePtr> first = starThrough(file.path);
@@ -330,7 +381,19 @@ TEST_F(CacheFile, AnotherMeshsCacheIsRebuiltForThisMesh) {
   ASSERT_TRUE(other.ok()) << other.status().message();
   ASSERT_FALSE(readBytes(file.path).empty());
   const std::vector<std::uint8_t> valid = encodePieceCache(starKey(), fresh());
+  const std::vector<std::uint8_t> foreign = readBytes(file.path);
   ASSERT_NO_FATAL_FAILURE(expectRebuiltAndRewritten(file.path, valid));
+  // Stale, not forged: read before the key is known (two threads) or after, it is
+  // rebuilt without a warning.
+  for (const int threads : {1, 2}) {
+    writeBytes(file.path, foreign);
+    options.threads = threads;
+    const Result<PiecePtr> rebuilt = buildPiece(ModelKind::ClosedPolyhedron, *star_, options);
+    ASSERT_TRUE(rebuilt.ok()) << rebuilt.status().message();
+    EXPECT_FALSE(rebuilt.value()->stats().from_cache) << threads;
+    EXPECT_EQ(rebuilt.status().code(), ErrorCode::Ok) << rebuilt.status().message();
+  }
+  options.threads = 0;
   // The same arrays as a soup are another input too.
   const Result<PiecePtr> soup = buildPiece(ModelKind::TriangleSoup, *star_, options);
   ASSERT_TRUE(soup.ok());

@@ -52,16 +52,26 @@ void solvePassive(const RowsRef& e, const RhsRef& f, const std::vector<char>& pa
   for (Eigen::Index k = 0; k < count; ++k) z[cols[static_cast<std::size_t>(k)]] = s[k];
 }
 
-/// Lawson-Hanson NNLS into u (size e.cols()), with work arrays from `w`.
-void nnls(const RowsRef& e, const RhsRef& f, int max_iterations, QpWork& w, Eigen::Ref<VecX> u) {
+/// Lawson-Hanson NNLS into u (size e.cols()), with work arrays from `w`. With `warm`
+/// > 0, u's first `warm` entries are the solution of the problem on the first `warm`
+/// columns, a state the outer loop passes through (its positive entries passive, each
+/// their least squares), so the solve goes on from there instead of from zero.
+void nnls(const RowsRef& e, const RhsRef& f, int max_iterations, QpWork& w, Eigen::Ref<VecX> u,
+          Eigen::Index warm = 0) {
   const Eigen::Index m = e.cols();
   if (max_iterations <= 0) max_iterations = 3 * static_cast<int>(m) + 10;
   const double tol = 1e-12 * std::max(1.0, e.norm());
   if (w.gradient.size() < m) w.gradient.resize(2 * m);
   if (w.trial.size() < m) w.trial.resize(2 * m);
   auto gradient = w.gradient.head(m), z = w.trial.head(m);
-  u.setZero();
   w.passive.assign(static_cast<std::size_t>(m), 0);
+  u.tail(m - warm).setZero();
+  for (Eigen::Index j = 0; j < warm; ++j) {
+    if (u[j] > tol)
+      w.passive[static_cast<std::size_t>(j)] = 1;
+    else
+      u[j] = 0.0;
+  }
   if (w.residual.size() != e.rows()) w.residual.resize(e.rows());  // any size of E
   VecX& residual = w.residual;
   for (int outer = 0; outer < max_iterations; ++outer) {
@@ -164,10 +174,13 @@ void solveAllRows(const VecZ& goal, const VecZ& weights, const RowsRef& a, const
 }  // namespace
 
 bool solveLdpStep(const VecZ& goal, const VecZ& weights, const RowsRef& a, const RhsRef& b,
-                  double length, QpWork& w) {
+                  double length, QpWork& w, Eigen::Index kept_rows) {
   const Eigen::Index n = goal.size(), m = a.rows();
   setGoal(goal, m, w);
   if (m == 0) return true;
+  // The kept rows' solution (w.u's head) starts the NNLS only if it is there.
+  if (kept_rows > m || w.u.size() < kept_rows || !w.u_valid) kept_rows = 0;
+  w.u_valid = false;
   const VecZ inv_sqrt_w = weights.cwiseSqrt().cwiseInverse();
   // The LDP in units of the largest violation at the goal: its thresholds (NNLS,
   // infeasibility) are then the same at every model scale.
@@ -183,9 +196,10 @@ bool solveLdpStep(const VecZ& goal, const VecZ& weights, const RowsRef& a, const
   if (goal_keeps_rows) return true;
   SmallVec f = SmallVec::Zero(n + 1);
   f[n] = 1.0;
-  if (w.u.size() < m) w.u.resize(2 * m);
+  if (w.u.size() < m) w.u.conservativeResize(2 * m);
   auto u = w.u.head(m);
-  nnls(e, f, 0, w, u);
+  nnls(e, f, 0, w, u, kept_rows);
+  w.u_valid = true;
   const SmallVec r = e * u - f;
   if (r.norm() < 1e-12 || std::abs(r[n]) < 1e-300) return false;  // infeasible
   const VecZ x = -(length / r[n]) * r.head(n);

@@ -29,6 +29,7 @@ struct QpResult {
 struct QpWork {
   MatX e;                   ///< the LDP's matrix, (n + 1) x rows
   VecX u, gradient, trial;  ///< per row
+  bool u_valid = false;     ///< u holds the last NNLS solution (solveLdpStep's start)
   VecX residual;            ///< per row of the LDP's matrix
   std::vector<char> passive, in_set;
   std::vector<int> passive_cols;
@@ -63,8 +64,10 @@ QpResult solveContactQpAllRows(const VecX& goal, const VecX& weights, const MatX
 /// (the unit of the LDP's thresholds, so that a subset is judged as the whole).
 /// False when the rows admit no point; else the minimiser over them in work.z and
 /// their multipliers in work.lambda, which the caller checks against the other rows.
+/// `kept_rows`: the first rows are those of the previous call on `work` (same goal,
+/// weights and length; rows only appended since), whose solution starts this one.
 bool solveLdpStep(const VecZ& goal, const VecZ& weights, const RowsRef& a, const RhsRef& b,
-                  double length, QpWork& work);
+                  double length, QpWork& work, Eigen::Index kept_rows = 0);
 
 /// Relative violation of a row beyond which a point is rejected (rounding is ~1e-16).
 constexpr double kRowTolerance = 1e-9;

@@ -198,8 +198,11 @@ void solvePatchQp(const std::vector<ContactPatch>& patches, const Vec3& y, const
     }
     if (!w.qp.feasible || w.rows.size() == before) break;
     const auto count = static_cast<Eigen::Index>(w.rows.size());
+    // The rows only grow within this call (same goal, weights, length): the last
+    // round's solution starts this one.
+    const auto kept = before > 0 ? static_cast<Eigen::Index>(before) : 0;
     if (!solveLdpStep(goal, weights, w.qp.sub_a.topRows(count), w.qp.sub_b.head(count), length,
-                      w.qp)) {
+                      w.qp, kept)) {
       w.qp.feasible = false;
       break;
     }

@@ -73,6 +73,35 @@ TEST(ContactQp, WorkingSetMatchesAllRows) {
   EXPECT_GT(compared, 150);
 }
 
+/// A working set's step started from the previous step's solution (rows appended
+/// since) finds the same minimiser and equally optimal multipliers as a cold solve.
+TEST(ContactQp, StepStartedFromTheKeptRowsEqualsAColdStep) {
+  std::mt19937 rng(11);
+  int compared = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = trial % 2 == 0 ? 3 : 6;
+    const int m = 8 + trial % 40, kept = 1 + trial % (m - 1);
+    const Problem p = contactLike(rng, n, m, m * 3 / 4, trial % 3 == 0 ? 1e-3 : 0.05, 0.05);
+    const VecZ goal = p.goal, weights = p.weights;
+    const double length = (p.b - p.a * p.goal).maxCoeff();
+    if (length <= 0.0) continue;
+    QpWork warm, cold;
+    solveLdpStep(goal, weights, p.a.topRows(kept), p.b.head(kept), length, warm);
+    const bool warm_ok = solveLdpStep(goal, weights, p.a, p.b, length, warm, kept);
+    const bool cold_ok = solveLdpStep(goal, weights, p.a, p.b, length, cold);
+    ASSERT_EQ(warm_ok, cold_ok) << "trial " << trial;
+    if (!cold_ok) continue;
+    ++compared;
+    EXPECT_LT((warm.z - cold.z).norm(), 1e-9 * (1.0 + cold.z.norm())) << "trial " << trial;
+    QpResult r;
+    r.feasible = true;
+    r.z = warm.z;
+    r.lambda = Eigen::Map<const VecX>(warm.lambda.data(), m);
+    expectOptimal(p, r, "warm step");
+  }
+  EXPECT_GT(compared, 200);
+}
+
 TEST(ContactQp, WorkingSetReportsInfeasibleWedges) {
   // Two opposite half-spaces that cannot both hold, buried among many harmless rows.
   std::mt19937 rng(11);

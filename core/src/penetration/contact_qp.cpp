@@ -307,9 +307,12 @@ void solveContactQp(const VecZ& goal, const VecZ& weights, const RowsRef& a, con
   if (violatedRows(a, b, length, w)) return setInfeasible(goal, m, w);
   if (w.violated.empty()) return;  // the goal keeps every row
   for (;;) {
+    // Rows are only appended: the last round's solution starts the next.
+    const auto kept = static_cast<Eigen::Index>(w.set_rows.size());
     growWorkingSet(a, b, w);
     const auto count = static_cast<Eigen::Index>(w.set_rows.size());
-    if (!solveLdpStep(goal, weights, w.sub_a.topRows(count), w.sub_b.head(count), length, w) ||
+    if (!solveLdpStep(goal, weights, w.sub_a.topRows(count), w.sub_b.head(count), length, w,
+                      kept) ||
         violatedRows(a, b, length, w))
       return setInfeasible(goal, m, w);
     if (w.violated.empty()) return spreadMultipliers(m, w);

@@ -73,13 +73,20 @@ TEST(QuickHull, RandomPointsGiveQhullsVertices) {
   }
 }
 
+/// n random points on the unit sphere (every one a hull vertex) and their hull.
+std::vector<Vec3> sphereHull(test::Rng& rng, int n, QuickHullWorkspace& work,
+                             ConvexPolytope& hull) {
+  std::vector<Vec3> points;
+  for (int i = 0; i < n; ++i) points.push_back(test::randomDirection(rng));
+  EXPECT_TRUE(quickHull(points, {}, work, hull));
+  return points;
+}
+
 TEST(QuickHull, SpherePointsAreAllVertices) {
   test::Rng rng(3);
-  std::vector<Vec3> points;
-  for (int i = 0; i < 2000; ++i) points.push_back(test::randomDirection(rng));
   QuickHullWorkspace work;
   ConvexPolytope hull;
-  ASSERT_TRUE(quickHull(points, {}, work, hull));
+  const std::vector<Vec3> points = sphereHull(rng, 2000, work, hull);
   EXPECT_EQ(hull.vertices.size(), points.size());
   EXPECT_EQ(hull.faces.size(), 2 * points.size() - 4);
   expectValidHull(hull, points, rng);
@@ -89,11 +96,9 @@ TEST(QuickHull, SpherePointsAreAllVertices) {
 // not every face made (a hierarchy's root on a 1M soup made millions).
 TEST(QuickHull, WorkspaceHoldsAboutTheLiveFaces) {
   test::Rng rng(11);
-  std::vector<Vec3> points;
-  for (int i = 0; i < 4000; ++i) points.push_back(test::randomDirection(rng));
   QuickHullWorkspace work;
   ConvexPolytope hull;
-  ASSERT_TRUE(quickHull(points, {}, work, hull));
+  const std::vector<Vec3> points = sphereHull(rng, 4000, work, hull);
   int made = 0;  // serials count every face made
   for (const QuickHullWorkspace::Face& f : work.faces) made = std::max(made, f.serial + 1);
   const std::size_t live = hull.faces.size();

@@ -28,11 +28,7 @@ MeshData boxMesh(const Vec3& h) {
   return m;
 }
 
-ModelPtr boxModel(const Vec3& half_extents) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, boxMesh(half_extents));
-  if (!piece.ok()) return nullptr;
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
-}
+ModelPtr boxModel(const Vec3& half_extents) { return closedModel(boxMesh(half_extents)); }
 
 ModelPtr closedModel(const MeshData& mesh) {
   auto piece = buildPiece(ModelKind::ClosedPolyhedron, mesh);
@@ -61,11 +57,11 @@ MeshData prismMesh(int sides, double circumradius, double half_height) {
   return m;
 }
 ModelPtr convexModel(const detail::ConvexPolytope& poly) {
-  auto piece = buildPiece(ModelKind::ClosedPolyhedron, meshOf(poly));
-  EXPECT_TRUE(piece.ok()) << piece.status().message();
-  if (!piece.ok()) return nullptr;
-  EXPECT_TRUE(piece.value()->stats().convex);
-  return std::make_shared<Model>(ModelKind::ClosedPolyhedron, std::vector<PiecePtr>{piece.value()});
+  ModelPtr model = closedModel(meshOf(poly));
+  if (model) {
+    EXPECT_TRUE(model->pieces().front()->stats().convex);
+  }
+  return model;
 }
 
 namespace {

@@ -21,8 +21,7 @@ double logUniform(Rng& rng, double lo, double hi);
 
 /// Axis-aligned box centred at the origin, 12 triangles, outward CCW.
 MeshData boxMesh(const Vec3& half_extents);
-/// A one-piece closed-polyhedron model of boxMesh(half_extents); null if the piece
-/// cannot be built.
+/// closedModel(boxMesh(half_extents)).
 ModelPtr boxModel(const Vec3& half_extents);
 /// A one-piece closed-polyhedron model of `mesh`; a test failure and null if the
 /// piece cannot be built.

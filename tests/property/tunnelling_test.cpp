@@ -154,6 +154,45 @@ TEST_P(Tunnelling, FastSequenceStaysOnTheEntrySide) {
   }
 }
 
+/// A body resting within the tolerance above the wall, its contacts never gathered
+/// (it came down in certified steps), then moved through the wall in one update to a
+/// free pose: the update measures the goal first (its near pairs do not reach the
+/// body), and its sweep from the rest still stops at the wall.
+TEST_P(Tunnelling, FromRestWithinTheToleranceThroughTheWall) {
+  const Wall wall = GetParam();
+  const MeshData wall_mesh = wallMesh(wall.kind);
+  const ModelPtr wall_model = modelOf(wall.kind, wall_mesh);
+  const MeshData body = boxMesh(Vec3(0.05, 0.05, 0.05));
+  const ModelPtr body_model = modelOf(ModelKind::ClosedPolyhedron, body);
+  ASSERT_TRUE(wall_model && body_model);
+  const Part wall_part{wall_model.get(), Rigid(), 2}, body_part{body_model.get(), Rigid(), 1};
+  const Placement wall_place;
+  const double top = wall.kind == ModelKind::ClosedPolyhedron ? kWallHalfThickness : 0.0;
+  for (const RotationMode mode : {RotationMode::Input, RotationMode::None}) {
+    SceneSettings settings;
+    settings.tolerance = 1e-3;
+    settings.rotation_mode = mode;
+    PairTracker tracker;
+    DirectedResult out[2];
+    // Down to 0.6 tolerances above the wall, then 0.3 further down, through it.
+    for (const double z : {0.5, 0.2, top + 0.05 + 0.6e-3, top + 0.05 + 0.6e-3 - 0.3}) {
+      SCOPED_TRACE(testing::Message() << "mode " << static_cast<int>(mode) << " z " << z);
+      const Placement p = placementOf(Quat::Identity(), Vec3(0.1, -0.2, z));
+      tracker.update({&body_part, 1, p}, {&wall_part, 1, wall_place}, {true, false}, settings, out);
+      const DirectedResult& r = out[0];
+      ASSERT_EQ(r.code, ErrorCode::Ok);
+      EXPECT_TRUE(detail::checkResult(r, p, wall_place).ok());
+      if (z > 0.0) {
+        EXPECT_NEAR(r.distance, z - 0.05 - top, 1e-9);
+        continue;
+      }
+      ASSERT_GT(meshSurfaceDistance(body, p.worldFromLocal(), wall_mesh, Rigid()).distance, 0.1);
+      EXPECT_NEAR(-r.distance, top - (z - 0.05), 1e-9) << "tunnelled through the " << wall.name;
+      EXPECT_VEC_NEAR(r.normal, Vec3::UnitZ(), 1e-9);
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Walls, Tunnelling,
                          ::testing::Values(Wall{ModelKind::ClosedPolyhedron, "thin box"},
                                            Wall{ModelKind::TriangleSoup, "soup quad"}),

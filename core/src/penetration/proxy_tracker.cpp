@@ -126,6 +126,25 @@ bool ProxyTracker::certifiedFree(GroupPairQuery& query, const Rigid& goal, const
   return start_gap + end_gap - length > 2.0 * skinOf(settings);
 }
 
+bool ProxyTracker::sweptFree(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                             const PairSettings& settings, ProxyOutcome& out, bool& measured) {
+  const RotationMode mode = settings.rotation_mode;
+  if (mode != RotationMode::Input && mode != RotationMode::None) return false;
+  const Vec3 from = proxy_ * center;
+  if (!measured) reportApart(query, goal, settings, out);
+  measured = true;
+  const double skin = skinOf(settings);
+  const bool apart =
+      out.code == ErrorCode::NoResult || (out.code == ErrorCode::Ok && out.distance > skin);
+  if (!apart) return false;
+  // Nothing within skin / 2 along the translation (translationToi), and the goal free.
+  skip_.clear();
+  if (query.translationToi(proxy_, goal * center - from, skin, skip_) < 1.0) return false;
+  // Contacts will be needed here soon: their rebuild runs ahead, a share per update.
+  query.rebuildNearAhead(goal, settings.tolerance, slideMarginOf(settings));
+  return true;
+}
+
 void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                           const PairSettings& settings, ProxyOutcome& out) {
   out = ProxyOutcome();
@@ -143,7 +162,13 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   previous_proxy_ = proxy_;
   touch_normal_.setZero();
   bool measured = false;
-  if (!penetrating_ && certifiedFree(query, goal, center, settings, out, measured)) {
+  // The slide would gather its contacts anew (the first update after a long move):
+  // read before the goal's measurement moves the last distance.
+  const bool reentry =
+      !penetrating_ &&
+      !query.nearReaches(poseAt(goal.rotation, center, proxy_ * center), settings.tolerance);
+  if (!penetrating_ && (certifiedFree(query, goal, center, settings, out, measured) ||
+                        (reentry && sweptFree(query, goal, center, settings, out, measured)))) {
     proxy_ = goal;  // where the slide's one unobstructed sweep would have put it
     ran_out_ = false;
     out.iterations = 1;

@@ -80,6 +80,15 @@ class ProxyTracker {
   /// true when that certifies the whole motion, so no sweep is needed.
   bool certifiedFree(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                      const PairSettings& settings, ProxyOutcome& out, bool& measured);
+  /// Called for a free proxy whose contacts the query's kept state no longer reaches
+  /// (the first update after a long move), INPUT or NONE: the slide would gather them
+  /// anew around it. Instead the goal is measured into `out` (`measured`), as a fresh
+  /// tracker does,
+  /// and when it is apart by more than the skin the proxy's centre is swept there at
+  /// its rotation, which then turns in place (as the slide turns it). True when that
+  /// sweep meets nothing: the proxy is at the goal.
+  bool sweptFree(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
+                 const PairSettings& settings, ProxyOutcome& out, bool& measured);
   /// Steps 2-3 for this update's rotation mode; true when the proxy reached the goal.
   bool follow(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
               const PairSettings& settings, ProxyOutcome& out);

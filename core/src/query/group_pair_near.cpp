@@ -83,6 +83,12 @@ void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshol
   counters_.ahead_installed = ahead.ahead_installed;
 }
 
+void GroupPairQuery::rebuildNearAhead(const Rigid& o_from_t, double threshold, double margin) {
+  if (near_.covers(o_from_t, threshold)) return;
+  if (!near_.pendingCovers(o_from_t, threshold)) startPendingNear(o_from_t, threshold + margin);
+  advancePendingNear(o_from_t, threshold, false);
+}
+
 bool GroupPairQuery::distanceNear(const Rigid& o_from_t, double max_distance, LeafContact& best,
                                   bool& found) {
   // The kept pairs hold every leaf pair within `covered` here, and a leaf's hull is

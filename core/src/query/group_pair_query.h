@@ -77,6 +77,15 @@ class GroupPairQuery {
   /// threshold, unless kMaxContacts cut its pairs short; at least the last distance
   /// less the motion since.
   double nearCoveredReach(const Rigid& o_from_t) const;
+  /// True when contactsNear(o_from_t, threshold, ...) answers from the kept pairs or
+  /// the last distance, without running a rebuild.
+  bool nearReaches(const Rigid& o_from_t, double threshold) const {
+    return near_.covers(o_from_t, threshold) || knownLowerBound(o_from_t) > threshold;
+  }
+  /// contactsNear() will soon be called around o_from_t, where its kept pairs do not
+  /// reach: their rebuild there is started, or continued, a share of it per call, so
+  /// that no single call pays for all of it.
+  void rebuildNearAhead(const Rigid& o_from_t, double threshold, double margin);
 
   /// Closest points of one leaf pair (GJK with its warm start).
   LeafContact pairAt(int t_leaf, int o_leaf, const Rigid& o_from_t);
@@ -91,7 +100,9 @@ class GroupPairQuery {
 
   /// Largest s in [0, 1] such that translating the target by s * delta (opponent frame)
   /// from `o_from_t` keeps every leaf pair not listed in `skip` at gap >= skin/2,
-  /// ending at gap <= skin when a pair blocks. Conservative advancement per pair.
+  /// ending at gap <= skin when a pair blocks. Conservative advancement per pair. A
+  /// pair starting within skin blocks at once, unless it starts at skin/2 or more and
+  /// the translation opens it (its separation along its normal only grows).
   /// `skip` is sorted (LeafPair::operator<).
   double translationToi(const Rigid& o_from_t, const Vec3& delta, double skin,
                         const std::vector<LeafPair>& skip);

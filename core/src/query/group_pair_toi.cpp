@@ -112,8 +112,14 @@ struct GroupPairQuery::ToiPolicy {
     for (int step = 0; step < kMaxAdvanceSteps && s < limit; ++step) {
       bool beyond = false;
       const LeafContact c = q.evaluate(p, translated(start, s * delta), kInfinity, beyond);
-      if (c.intersecting || c.gap <= skin) break;
       const double rate = -c.normal.dot(delta);
+      // A pair starting within the skin blocks, unless it starts at skin / 2 or more
+      // and the motion opens it: its separation along the normal then only grows.
+      if (step == 0 && !c.intersecting && c.gap >= 0.5 * skin && rate <= 0.0) {
+        s = limit;
+        break;
+      }
+      if (c.intersecting || c.gap <= skin) break;
       if (rate <= 0.0) {
         s = limit;
         break;

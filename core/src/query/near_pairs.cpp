@@ -60,8 +60,11 @@ int NearPairs::pendingBudget(const Rigid& o_from_t, double threshold) const {
   // to remain.
   const double step = sphere_.displacement(pending_.last_pose, o_from_t);
   if (!(step > 0.0)) return base;
-  // Kept pairs exist here: with none, every call is due and finishes the rebuild.
+  // Kept pairs exist here: with none, every call is due and finishes the rebuild,
+  // unless it runs ahead of a first contact (rebuildNearAhead): then a share per call,
+  // and a rebuild overtaken by the motion leaves its work as the next one's front.
   const double room = coveredReach(o_from_t) - threshold;
+  if (!(room > 0.0)) return base;
   const double calls_left = std::max(1.0, std::floor(room / step));
   const int rest = std::max(expected_work_ - pending_.work, pending_.work);
   return std::max(base, static_cast<int>(std::ceil(rest / calls_left)));

@@ -93,9 +93,12 @@ struct BruteForce {
     double s = 0.0;
     for (int step = 0; step < 64 && s < limit; ++step) {
       const GjkResult r = pair(i, j, {o_from_t.rotation, o_from_t.translation + s * delta});
-      if (r.status == GjkStatus::Intersecting || r.distance <= stop_gap) return s;
-      // Opening, or (at the start) a gap the whole translation cannot close: no block.
+      if (r.status == GjkStatus::Intersecting) return s;
+      // Opening from at least stop_gap / 2 at the start: its separation only grows.
       const double rate = -r.normal.dot(delta);
+      if (step == 0 && r.distance >= 0.5 * stop_gap && rate <= 0.0) return limit;
+      if (r.distance <= stop_gap) return s;
+      // Opening, or (at the start) a gap the whole translation cannot close: no block.
       if (rate <= 0.0 || (step == 0 && r.distance - limit * delta.norm() > 0.5 * stop_gap))
         return limit;
       s = std::min(limit, s + (r.distance - 0.5 * stop_gap) / rate);

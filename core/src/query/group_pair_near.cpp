@@ -137,11 +137,12 @@ void GroupPairQuery::measureKept(const Rigid& o_from_t, double threshold,
   for (const LeafContact& c : out) {
     LeafContact exact = c;
     if (!c.measured) {
-      const int i = near_.find({c.t_leaf, c.o_leaf});
+      const int i = near_.find({c.t_leaf, c.o_leaf});  // out holds near_'s pairs
       const NodePair p = leafPair(c.t_leaf, c.o_leaf);
       bool beyond = false;
-      exact = evaluate(p, o_from_piece_[p.t_slot], near_.reach(), beyond, &near_.cache(i));
-      near_.measured(static_cast<std::size_t>(i), exact.gap, pose);
+      exact = evaluate(p, o_from_piece_[p.t_slot], near_.reach(), beyond,
+                       i >= 0 ? &near_.cache(static_cast<std::size_t>(i)) : nullptr);
+      if (i >= 0) near_.measured(static_cast<std::size_t>(i), exact.gap, pose);
       if (beyond || exact.gap > threshold) continue;
     }
     out[kept++] = exact;

@@ -6,22 +6,12 @@
 
 namespace sc::detail {
 
-double spinBound(const Mat3& from, const Mat3& to) {
-  // For rotations, ||R_X - R_K|| = ||R_K^T R_X - I|| = 2 sin(angle / 2) =
-  // sqrt(3 - tr(R_K^T R_X)): sqrt(2) times below the Frobenius norm, which bounds it
-  // whatever the matrices. The trace carries their rounding (~1e-15; far more room
-  // is left) and, near 3, the root magnifies it: hence the floor under the root.
-  constexpr double kRounding = 1e-12;
-  const double frobenius = (to - from).norm();
-  const double trace = from.cwiseProduct(to).sum();
-  return std::min(frobenius, std::sqrt(std::max(0.0, 3.0 - trace) + kRounding));
-}
-
 double TargetSphere::displacement(const Rigid& from, const Rigid& to) const {
   // A target point p = c + q (|q| <= radius) moves by at most
-  // |(X - K) c| + ||R_X - R_K|| radius.
+  // |(X - K) c| + ||R_X - R_K|| radius; the Frobenius norm bounds the spectral one.
   const double centre_shift = (to * center - from * center).norm();
-  return centre_shift + spinBound(from.rotation, to.rotation) * radius;
+  const double spin = (to.rotation - from.rotation).norm();
+  return centre_shift + spin * radius;
 }
 
 const std::vector<LeafContact>* NearPairs::memo(const Rigid& o_from_t, double threshold) const {
@@ -71,7 +61,7 @@ double NearPairs::gapBoundAt(std::size_t i, const Rigid& pose) const {
   const Rigid& from = poses_[static_cast<std::size_t>(g.pose)];
   const Mat3 rotation = pose.rotation - from.rotation;
   const Vec3 shift = rotation * g.center + (pose.translation - from.translation);
-  return g.gap - (shift.norm() + spinBound(from.rotation, pose.rotation) * g.radius);
+  return g.gap - (shift.norm() + rotation.norm() * g.radius);
 }
 
 void NearPairs::finishPending() {
@@ -105,7 +95,7 @@ int NearPairs::prepareBounds(const Rigid& o_from_t) {
   constexpr std::size_t kMaxPoses = 32;
   auto changeTo = [&](const Rigid& from) {
     PoseChange d{o_from_t.rotation - from.rotation, o_from_t.translation - from.translation, 0.0};
-    d.spin = spinBound(from.rotation, o_from_t.rotation);
+    d.spin = d.rotation.norm();
     return d;
   };
   changes_.clear();

@@ -22,10 +22,6 @@
 
 namespace sc::detail {
 
-/// Bound of the spectral norm of to - from for two rotations (how far a unit vector
-/// moves between them), with room for their rounding.
-double spinBound(const Mat3& from, const Mat3& to);
-
 /// A sphere holding the target group (its own frame): bounds how far any target
 /// point moves between two placements of the group.
 struct TargetSphere {
@@ -126,7 +122,7 @@ class NearPairs {
   struct PoseChange {
     Mat3 rotation;
     Vec3 translation;
-    double spin;  ///< spinBound() of the rotation change
+    double spin;  ///< Frobenius norm of the rotation change
   };
 
   TargetSphere sphere_;

@@ -805,29 +805,6 @@ TEST(GroupPairQueryPacing, ALandingPlateSpreadsItsRebuildsOverTheCalls) {
       most, largest_rebuild, want.size());
 }
 
-// spinBound (near_pairs.h): how far a unit vector moves between two rotations is at
-// most it, and it is the largest such move (2 sin(angle / 2)) up to its rounding room,
-// from turns of 1e-9 rad to half a turn.
-TEST(SpinBound, BoundsTheMoveOfEveryUnitVectorAndIsTight) {
-  test::Rng rng(73);
-  for (int k = 0; k < 2000; ++k) {
-    const Mat3 from = test::randomRotation(rng).toRotationMatrix();
-    const double angle = std::pow(10.0, test::uniform(rng, -9.0, std::log10(kPi)));
-    const Vec3 axis = test::randomDirection(rng);
-    const Mat3 to = Eigen::AngleAxisd(angle, axis).toRotationMatrix() * from;
-    const double bound = spinBound(from, to);
-    EXPECT_LE(bound, (to - from).norm() + 1e-15);
-    EXPECT_NEAR(bound, 2.0 * std::sin(0.5 * angle), 2e-6);
-    // The vector moved most lies in the plane normal to the axis (in from's frame).
-    const Vec3 v = from.transpose() * axis.unitOrthogonal();
-    EXPECT_GE(bound, ((to - from) * v).norm());
-    for (int j = 0; j < 4; ++j) {
-      const Vec3 u = test::randomDirection(rng);
-      EXPECT_GE(bound, ((to - from) * u).norm());
-    }
-  }
-}
-
 TEST(PairCache, KeepsEntriesAndStaysBounded) {
   PairCache cache;
   cache.at(7).count = 3;

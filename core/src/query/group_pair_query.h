@@ -161,8 +161,8 @@ class GroupPairQuery {
   bool distanceNear(const Rigid& o_from_t, double max_distance, LeafContact& best, bool& found);
   /// contactsNear()'s pairs at o_from_t, none farther than `threshold`, into `out`.
   void evaluateNear(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
-  /// near_.mutablePairs() (sorted, measured at `pose`) become the pairs within `reach`
-  /// there.
+  /// near_.mutablePairs() (sorted; gaps measured at `pose`, or lower bounds there for
+  /// the pairs a rebuild kept unmeasured) become the pairs within `reach` there.
   void installNear(const Rigid& pose, double reach);
   /// A rebuild's leaf pair p at `pose` that near_ keeps: into `out` unmeasured with
   /// its bound when that is within `reach`, else recorded beyond it in `front`; false

@@ -64,6 +64,7 @@ void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshol
     counters_ = advancePendingNear(o_from_t, threshold, true);
     for (const LeafContact& c : near_.pairs())  // already sorted
       if (c.gap <= threshold) out.push_back(c);
+    measureKept(o_from_t, threshold, out);
   } else {
     evaluateNear(o_from_t, threshold, out);
     // A third of the slack used: the next rebuild starts here, spread over the calls
@@ -132,6 +133,65 @@ void GroupPairQuery::evaluateNear(const Rigid& o_from_t, double threshold,
   sortContacts(out);
 }
 
+void GroupPairQuery::measureKept(const Rigid& o_from_t, double threshold,
+                                 std::vector<LeafContact>& out) {
+  const auto unmeasured = [](const LeafContact& c) { return !c.measured; };
+  if (std::none_of(out.begin(), out.end(), unmeasured)) return;
+  placeTargets(o_from_t);
+  const int pose = near_.prepareBounds(o_from_t);
+  std::size_t kept = 0;
+  for (const LeafContact& c : out) {
+    LeafContact exact = c;
+    if (!c.measured) {
+      const int i = near_.find({c.t_leaf, c.o_leaf});  // out holds near_'s pairs
+      const NodePair p = leafPair(c.t_leaf, c.o_leaf);
+      bool beyond = false;
+      exact = evaluate(p, o_from_piece_[p.t_slot], near_.reach(), beyond,
+                       i >= 0 ? &near_.cache(static_cast<std::size_t>(i)) : nullptr);
+      if (i >= 0) near_.measured(static_cast<std::size_t>(i), exact.gap, pose);
+      if (beyond || exact.gap > threshold) continue;
+    }
+    out[kept++] = exact;
+  }
+  out.resize(kept);
+  sortContacts(out);
+}
+
+bool GroupPairQuery::visitKept(const NodePair& p, const Rigid& pose, double reach,
+                               std::vector<LeafContact>& out, NearFront* front) {
+  const Slot& ts = t_slots_[p.t_slot];
+  const Slot& os = o_slots_[p.o_slot];
+  const int t_leaf = ts.first_leaf + ts.data->hierarchy.nodes[p.t_node].polytope;
+  const int o_leaf = os.first_leaf + os.data->hierarchy.nodes[p.o_node].polytope;
+  const int i = near_.find({t_leaf, o_leaf});
+  if (i < 0) return false;
+  // Its last gap less the motion since bounds it here: a pair beyond the reach by
+  // that is pruned, one within it is kept with the bound, and measured only once a
+  // call's threshold needs it (most stay farther than that while kept).
+  const double bound = std::max(0.0, near_.gapBoundAt(static_cast<std::size_t>(i), pose));
+  if (bound > reach) {
+    NodePair far = p;
+    far.bound = bound;
+    if (front) front->record(far);
+    return true;
+  }
+  LeafContact c = near_.pairs()[static_cast<std::size_t>(i)];
+  c.gap = bound;
+  c.measured = false;
+  out.push_back(c);
+  return true;
+}
+
+void GroupPairQuery::saveNearCaches() {
+  // The kept pairs' warm starts are fresher than the rebuild's, which now measures
+  // few of them: the next set starts from them.
+  if (!near_.reuseInRebuilds()) return;
+  for (std::size_t i = 0; i < near_.pairs().size(); ++i) {
+    const LeafContact& c = near_.pairs()[i];
+    cacheOf(leafPair(c.t_leaf, c.o_leaf)) = near_.cache(i);
+  }
+}
+
 void GroupPairQuery::installNear(const Rigid& pose, double reach) {
   near_.install(pose, reach);
   for (const LeafContact& c : near_.pairs()) {
@@ -140,6 +200,7 @@ void GroupPairQuery::installNear(const Rigid& pose, double reach) {
     const HullBvhNode& node = ts.data->hierarchy.nodes[p.t_node];
     near_.keep(cacheOf(p), ts.group_from_piece * node.center, node.radius, c.gap);
   }
+  near_.indexPairs();
 }
 
 void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
@@ -155,7 +216,7 @@ void GroupPairQuery::startPendingNear(const Rigid& o_from_t, double reach) {
   // there and lent back to it on every call.
   o_from_piece_.swap(pending.o_from_piece);
   placeTargets(o_from_t);
-  ContactsPolicy policy{*this, reach, pending.found, &front_};
+  ContactsPolicy policy{*this, reach, pending.found, &front_, keptAt(pending.pose)};
   seedPendingNear(policy, o_from_t, pending.heap);
   o_from_piece_.swap(pending.o_from_piece);
 }
@@ -221,7 +282,7 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
   const TraversalCounters saved = counters_;
   counters_ = TraversalCounters();
   o_from_piece_.swap(pending.o_from_piece);
-  ContactsPolicy policy{*this, pending.reach, pending.found, &front_};
+  ContactsPolicy policy{*this, pending.reach, pending.found, &front_, keptAt(pending.pose)};
   const bool done = runTraversal(policy, pending.heap, budget, until);
   o_from_piece_.swap(pending.o_from_piece);
   const TraversalCounters work = counters_;
@@ -230,6 +291,7 @@ TraversalCounters GroupPairQuery::advancePendingNear(const Rigid& o_from_t, doub
   if (!done && !finish) return work;
   TraversalCounters installed = work;
   installed.ahead_installed = true;
+  saveNearCaches();
   if (!done) {  // installed as far as it got; it goes on
     near_.mutablePairs() = pending.found;
     sortContacts(near_.mutablePairs());

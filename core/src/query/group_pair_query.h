@@ -35,6 +35,9 @@ class GroupPairQuery {
   /// Radius of a sphere holding the target group: the length its relative
   /// thresholds scale with (set by bind(), so no query pays for it).
   double targetSize() const { return near_.target().radius; }
+  /// contactsNear()'s rebuilds take the pairs they already keep with their bounds,
+  /// unmeasured (default); false measures every pair (tests compare the two).
+  void setNearReuseInRebuilds(bool reuse) { near_.setReuseInRebuilds(reuse); }
   /// contactsNear()'s rebuilds so far that started from the last one's front.
   int frontRebuilds() const { return front_.served(); }
   int opponentLeafCount() const { return o_leaf_count_; }
@@ -169,9 +172,21 @@ class GroupPairQuery {
   bool distanceNear(const Rigid& o_from_t, double max_distance, LeafContact& best, bool& found);
   /// contactsNear()'s pairs at o_from_t, none farther than `threshold`, into `out`.
   void evaluateNear(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
-  /// near_.mutablePairs() (sorted, measured at `pose`) become the pairs within `reach`
-  /// there.
+  /// near_.mutablePairs() (sorted; gaps measured at `pose`, or lower bounds there for
+  /// the pairs a rebuild kept unmeasured) become the pairs within `reach` there.
   void installNear(const Rigid& pose, double reach);
+  /// A rebuild's leaf pair p at `pose` that near_ keeps: into `out` unmeasured with
+  /// its bound when that is within `reach`, else recorded beyond it in `front`; false
+  /// (nothing done) when near_ does not keep it.
+  bool visitKept(const NodePair& p, const Rigid& pose, double reach, std::vector<LeafContact>& out,
+                 NearFront* front);
+  /// The pose a rebuild at `pose` takes near_'s kept pairs at, or null (measure all).
+  const Rigid* keptAt(const Rigid& pose) const { return near_.reuseInRebuilds() ? &pose : nullptr; }
+  /// Writes the kept pairs' warm starts back to caches_ before a rebuild replaces them.
+  void saveNearCaches();
+  /// Measures the unmeasured pairs of `out` (near_'s, at o_from_t) and drops those
+  /// beyond `threshold`.
+  void measureKept(const Rigid& o_from_t, double threshold, std::vector<LeafContact>& out);
   /// The next rebuild, started at o_from_t ahead of need and run a little per call.
   void startPendingNear(const Rigid& o_from_t, double reach);
   /// The pending rebuild's first node pairs into `heap`: from front_ when it serves,

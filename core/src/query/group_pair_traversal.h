@@ -110,6 +110,9 @@ struct GroupPairQuery::ContactsPolicy {
   double threshold;
   std::vector<LeafContact>& out;
   NearFront* front = nullptr;  ///< a rebuild of the near pairs records its front here
+  /// A rebuild of the near pairs at this pose: a leaf pair it already keeps is taken
+  /// with its bound there, unmeasured (visitKept).
+  const Rigid* kept_at = nullptr;
 
   bool prunes(double bound) const { return bound > threshold; }
   double reach() const { return threshold; }
@@ -124,6 +127,7 @@ struct GroupPairQuery::ContactsPolicy {
     if (front) front->record(p);
   }
   bool visit(const NodePair& p) {
+    if (kept_at != nullptr && q.visitKept(p, *kept_at, threshold, out, front)) return true;
     bool beyond = false;
     const LeafContact c = q.evaluate(p, q.o_from_piece_[p.t_slot], threshold, beyond);
     if (!beyond && c.gap <= threshold) {

@@ -35,7 +35,10 @@ struct LeafContact {
   int t_leaf = -1;
   int o_leaf = -1;
   bool intersecting = false;
-  double gap = 0.0;             ///< GJK distance; 0 when intersecting
+  double gap = 0.0;  ///< GJK distance; 0 when intersecting
+  /// False for a pair a near-pair rebuild kept unmeasured: then gap is only a lower
+  /// bound and the other fields are stale.
+  bool measured = true;
   Vec3 normal = Vec3::UnitX();  ///< unit, from the opponent leaf towards the target leaf
   Vec3 point_t = Vec3::Zero();
   Vec3 point_o = Vec3::Zero();

@@ -43,6 +43,27 @@ void NearPairs::keep(const SimplexCache& cache, const Vec3& center, double radiu
   gaps_.push_back({center, radius, gap, 0});
 }
 
+void NearPairs::indexPairs() {
+  index_.clear();
+  for (std::size_t i = 0; i < pairs_.size(); ++i)
+    index_.push_back({{pairs_[i].t_leaf, pairs_[i].o_leaf}, static_cast<int>(i)});
+  std::sort(index_.begin(), index_.end());
+}
+
+int NearPairs::find(const LeafPair& p) const {
+  const auto it = std::lower_bound(index_.begin(), index_.end(), p,
+                                   [](const auto& e, const LeafPair& k) { return e.first < k; });
+  return it != index_.end() && it->first == p ? it->second : -1;
+}
+
+double NearPairs::gapBoundAt(std::size_t i, const Rigid& pose) const {
+  const Gap& g = gaps_[i];
+  const Rigid& from = poses_[static_cast<std::size_t>(g.pose)];
+  const Mat3 rotation = pose.rotation - from.rotation;
+  const Vec3 shift = rotation * g.center + (pose.translation - from.translation);
+  return g.gap - (shift.norm() + rotation.norm() * g.radius);
+}
+
 void NearPairs::finishPending() {
   expected_work_ = pending_.work;
   pending_.active = false;

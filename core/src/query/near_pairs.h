@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "query/gjk.h"
@@ -67,6 +68,16 @@ class NearPairs {
   void install(const Rigid& pose, double reach);
   /// Pair i's warm start and its target leaf's sphere (group frame).
   void keep(const SimplexCache& cache, const Vec3& center, double radius, double gap);
+  /// Indexes the installed pairs by leaf pair for find(); after the last keep().
+  void indexPairs();
+  /// Index of the kept pair (t_leaf, o_leaf), or -1.
+  int find(const LeafPair& p) const;
+  /// Lower bound of pair i's gap at `pose`, from its last measurement (any pose).
+  double gapBoundAt(std::size_t i, const Rigid& pose) const;
+  /// Whether a rebuild takes a kept pair's bound instead of measuring it (tests
+  /// compare with measuring every pair).
+  void setReuseInRebuilds(bool reuse) { reuse_in_rebuilds_ = reuse; }
+  bool reuseInRebuilds() const { return reuse_in_rebuilds_ && valid_; }
   /// Prepares gapBound() for the pose o_from_t; returns the index it gets.
   int prepareBounds(const Rigid& o_from_t);
   /// Lower bound of pair i's gap at the pose of the last prepareBounds().
@@ -123,6 +134,8 @@ class NearPairs {
   /// PairCache would be probed at random.
   std::vector<SimplexCache> caches_;
   std::vector<Gap> gaps_;
+  std::vector<std::pair<LeafPair, int>> index_;  ///< sorted by leaf pair
+  bool reuse_in_rebuilds_ = true;
   std::vector<Rigid> poses_;  ///< poses a pair was last measured at
   std::vector<PoseChange> changes_;
   Pending pending_;

@@ -460,6 +460,51 @@ TEST_F(GroupPairQueryTest, ContactsNearRebuiltFromTheFrontEqualTraversalsFromThe
               steps, with_contacts, near.frontRebuilds());
 }
 
+// A rebuild takes the leaf pairs the query already keeps with their bounds (last gap
+// less the motion since), unmeasured: along slow, turning slides the answers are those
+// of a query measuring every pair and of a full traversal, pair for pair, with fewer
+// leaf GJK runs.
+TEST_F(GroupPairQueryTest, ContactsNearTakingKeptPairsInRebuildsEqualsMeasuringThem) {
+  GroupPairQuery reuse, measure, plain;
+  reuse.bind(target_, opponent_);
+  measure.bind(target_, opponent_);
+  measure.setNearReuseInRebuilds(false);
+  plain.bind(target_, opponent_);
+  test::Rng rng(71);
+  const double threshold = 0.01, margin = 0.02;
+  const Mat3 turn = Eigen::AngleAxisd(0.004, Vec3(0.5, -0.3, 1.0).normalized()).toRotationMatrix();
+  int steps = 0, with_contacts = 0;
+  long gjk_reuse = 0, gjk_measure = 0;
+  const auto leafGjk = [](const GroupPairQuery& q) {
+    return q.counters().leaf_gjk + q.counters().ahead_gjk;
+  };
+  for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 5); ++run) {
+    Rigid pose = randomPose(rng, 0.5);
+    const Vec3 drift = 0.003 * test::randomDirection(rng);
+    for (int k = 0; k < 80; ++k, ++steps) {
+      SCOPED_TRACE(k);
+      pose.translation += drift + 0.002 * test::randomDirection(rng);
+      pose.rotation = turn * pose.rotation;
+      std::vector<LeafContact> got, measured, want;
+      reuse.contactsNear(pose, threshold, margin, got);
+      measure.contactsNear(pose, threshold, margin, measured);
+      plain.contacts(pose, threshold, want);
+      ASSERT_NO_FATAL_FAILURE(expectSameContacts(got, measured));
+      ASSERT_NO_FATAL_FAILURE(expectSameContacts(got, want));
+      for (const LeafContact& c : got) EXPECT_TRUE(c.measured);
+      gjk_reuse += leafGjk(reuse);
+      gjk_measure += leafGjk(measure);
+      if (!want.empty()) ++with_contacts;
+    }
+  }
+  EXPECT_GT(with_contacts, steps / 4);
+  EXPECT_LT(gjk_reuse, gjk_measure);
+  std::printf(
+      "[ group pair query ] %d steps, %d with contacts; GJK runs %ld taking kept pairs, "
+      "%ld measuring them\n",
+      steps, with_contacts, gjk_reuse, gjk_measure);
+}
+
 // Slides broken by moves of one to six times the rebuild's reach (a proxy's slide
 // iterations after a jump): a rebuild starts from the last front, its bounds lowered
 // by the motion and raised again by the node spheres at the new pose, or from what a

@@ -322,7 +322,10 @@ bool QuickHull::addEye(int face) {
 bool QuickHull::collect(const std::vector<int>& original, ConvexPolytope& out) {
   w_.vertex_slot.assign(p_.size(), -1);
   w_.slot_point.clear();
-  out = ConvexPolytope();
+  PolytopeParts& parts = w_.parts;
+  parts.vertices.clear();
+  parts.original.clear();
+  parts.faces.clear();
   // The live faces in the order they were made, whatever slots they took.
   std::vector<int>& alive = w_.alive;
   alive.clear();
@@ -330,11 +333,6 @@ bool QuickHull::collect(const std::vector<int>& original, ConvexPolytope& out) {
     if (faces_[f].alive) alive.push_back(f);
   std::sort(alive.begin(), alive.end(),
             [&](int a, int b) { return faces_[a].serial < faces_[b].serial; });
-  // A closed triangulated sphere has F / 2 + 2 vertices: exact sizes, no slack.
-  const std::size_t face_count = alive.size();
-  out.faces.reserve(face_count);
-  out.vertices.reserve(face_count / 2 + 2);
-  out.original.reserve(face_count / 2 + 2);
   for (const int f : alive) {
     const QuickHullWorkspace::Face& face = faces_[f];
     // Convex within the tolerance: each neighbour's far corner is below this face.
@@ -348,17 +346,17 @@ bool QuickHull::collect(const std::vector<int>& original, ConvexPolytope& out) {
     for (int k = 0; k < 3; ++k) {
       int& slot = w_.vertex_slot[face.v[k]];
       if (slot < 0) {
-        slot = static_cast<int>(out.vertices.size());
+        slot = static_cast<int>(parts.vertices.size());
         w_.slot_point.push_back(face.v[k]);
-        out.vertices.push_back(p_[face.v[k]]);
-        out.original.push_back(original.empty() ? face.v[k] : original[face.v[k]]);
+        parts.vertices.push_back(p_[face.v[k]]);
+        parts.original.push_back(original.empty() ? face.v[k] : original[face.v[k]]);
       }
       tri[k] = slot;
     }
-    out.faces.push_back(tri);
+    parts.faces.push_back(tri);
   }
-  out.face_source.assign(out.faces.size(), -1);
-  out.finalize();
+  parts.face_source.assign(parts.faces.size(), -1);
+  out = ConvexPolytope::build(parts, w_.finalize);
   return out.faces.size() >= 4;
 }
 

@@ -46,6 +46,8 @@ struct QuickHullWorkspace {
   std::vector<int> slot_point;  ///< per output vertex: its point
   std::vector<char> excluded;   ///< per point: dropped as no corner
   std::vector<int> dropped;
+  PolytopeParts parts;  ///< the hull's arrays before they are packed
+  FinalizeScratch finalize;
   int visit = 0;
 };
 

@@ -258,6 +258,20 @@ ConvexPolytope ConvexPolytope::build(const PolytopeParts& parts, PolytopeKeep ke
 
 ConvexPolytope ConvexPolytope::build(const PolytopeParts& parts, FinalizeScratch& scratch,
                                      PolytopeKeep keep) {
+  // A two-sided triangle's lists are constants; a bare point set (an inner node of
+  // a hierarchy) has no faces to walk: its arrays stay empty, which every reader
+  // takes as "scan the vertices".
+  const bool shared = isTwoSided(parts.faces.data(), parts.faces.size(), parts.vertices.size());
+  if (!shared && !parts.faces.empty()) derive(parts, scratch);
+  return pack(parts, scratch, keep);
+}
+
+void ConvexPolytope::derive(const PolytopeParts& parts, FinalizeScratch& scratch) {
+  buildAdjacency(parts, scratch);
+}
+
+ConvexPolytope ConvexPolytope::pack(const PolytopeParts& parts, const FinalizeScratch& scratch,
+                                    PolytopeKeep keep) {
   using P = PolytopePacking;
   const std::size_t n = parts.vertices.size(), nf = parts.faces.size();
   P packing;
@@ -275,9 +289,6 @@ ConvexPolytope ConvexPolytope::build(const PolytopeParts& parts, FinalizeScratch
       packing.set(P::kVf, kTwoSided.vertex_faces, 6);
     }
   } else if (nf > 0) {
-    // A bare point set (an inner node of a hierarchy) has no faces to walk: its
-    // arrays stay empty, which every reader takes as "scan the vertices".
-    buildAdjacency(parts, scratch);
     packing.set(P::kFaces, parts.faces.data(), nf);
     packing.set(P::kAdjStart, scratch.adjacency_start.data(), scratch.adjacency_start.size());
     packing.set(P::kAdj, scratch.adjacency.data(), scratch.adjacency.size());

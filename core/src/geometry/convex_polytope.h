@@ -109,6 +109,12 @@ class ConvexPolytope {
                               PolytopeKeep keep = PolytopeKeep::Everything);
   static ConvexPolytope build(const PolytopeParts& parts, FinalizeScratch& scratch,
                               PolytopeKeep keep = PolytopeKeep::Everything);
+  /// build() in two steps, for a caller that reads the derived lists first: derive()
+  /// puts the adjacency and vertex-face lists of `parts` (faces needed) into
+  /// `scratch`; pack() makes the polytope from `parts` and those lists.
+  static void derive(const PolytopeParts& parts, FinalizeScratch& scratch);
+  static ConvexPolytope pack(const PolytopeParts& parts, const FinalizeScratch& derived,
+                             PolytopeKeep keep = PolytopeKeep::Everything);
 
   /// This polytope repacked without what `keep` leaves out.
   ConvexPolytope reduced(PolytopeKeep keep) const;

@@ -217,7 +217,7 @@ class Builder {
     }
     if (static_cast<int>(points.size()) <= kPointSetLimit) return pointSet(parts);
     ConvexPolytope quick;
-    if (quickHull(points, original, work, quick)) return quick.reduced(PolytopeKeep::Support);
+    if (quickHull(points, original, work, quick, PolytopeKeep::Support)) return quick;
     Result<ConvexPolytope> hull = convexHull(points, original);
     if (hull.ok()) return hull.value().reduced(PolytopeKeep::Support);
     return flatHull(points, original);

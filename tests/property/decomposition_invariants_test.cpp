@@ -284,7 +284,7 @@ void checkDecomposition(const MeshData& mesh, const Decomposition& d, bool solid
       ++report.flat;
     } else {
       // Faces cover the hull exactly once: the same volume as qhull's hull.
-      Result<ConvexPolytope> hull = convexHull(poly.vertices);
+      Result<ConvexPolytope> hull = convexHull({poly.vertices.begin(), poly.vertices.end()});
       if (!hull.ok()) {
         fail(p, "qhull finds no hull of a patch with volume");
       } else {

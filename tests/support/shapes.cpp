@@ -112,13 +112,12 @@ std::vector<Vec3> randomPoints(Rng& rng, int n, double size) {
 }
 
 detail::ConvexPolytope polytopeFromMesh(const MeshData& mesh) {
-  detail::ConvexPolytope poly;
+  detail::PolytopeParts poly;
   poly.vertices = mesh.vertices;
   poly.faces = mesh.triangles;
   for (int i = 0; i < static_cast<int>(mesh.vertices.size()); ++i) poly.original.push_back(i);
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) poly.face_source.push_back(f);
-  poly.finalize();
-  return poly;
+  return detail::ConvexPolytope::build(poly);
 }
 
 namespace {
@@ -152,8 +151,8 @@ detail::ConvexPolytope hullOf(const std::vector<Vec3>& points, const MeshData* r
 
 MeshData meshOf(const detail::ConvexPolytope& poly) {
   MeshData m;
-  m.vertices = poly.vertices;
-  m.triangles = poly.faces;
+  m.vertices.assign(poly.vertices.begin(), poly.vertices.end());
+  m.triangles.assign(poly.faces.begin(), poly.faces.end());
   return m;
 }
 

@@ -91,7 +91,7 @@ std::pair<const int*, const int*> nearVertices(const ContactPatch& p, std::size_
                                                PatchQpWork& w) {
   if (w.near_range[i].first < 0) {
     w.near_range[i].first = static_cast<int>(w.near_list.size());
-    const std::vector<Vec3>& vs = p.poly->vertices;
+    const PolytopeArray<Vec3>& vs = p.poly->vertices;
     for (int v = 0; v < static_cast<int>(vs.size()); ++v)
       if (p.leaf_normal.dot(vs[static_cast<std::size_t>(v)]) - p.lowest <= near)
         w.near_list.push_back(v);
@@ -110,7 +110,7 @@ double mostViolated(const std::vector<ContactPatch>& patches, std::size_t i, con
   const Vec3 d = p.leaf_normal + p.o_from_leaf.rotation.transpose() * turn;
   const double offset = p.normal.dot(z.head<3>()) + (p.o_from_leaf.translation - y).dot(turn) -
                         skin + p.gap - p.lowest;
-  const std::vector<Vec3>& vs = p.poly->vertices;
+  const PolytopeArray<Vec3>& vs = p.poly->vertices;
   vertex = p.poly->support(-d, p.hint);
   if (p.leaf_normal.dot(vs[static_cast<std::size_t>(vertex)]) - p.lowest > near) {
     // The least over all vertices is not a row: the least over the rows, by a scan.

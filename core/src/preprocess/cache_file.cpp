@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Piece cache file: encode, decode with every count and index checked, and atomic
-// write. Adjacency, bounds and bounding spheres are not stored: finalize() and
+// write. Adjacency, bounds and bounding spheres are not stored: ConvexPolytope::build and
 // finishHullBvh() recompute them on load, so a file cannot make them inconsistent.
 #include "preprocess/cache_file.h"
 
@@ -171,6 +171,7 @@ class Reader {
     return p;
   }
   bool done() const { return ok_ && at_ == size_; }
+  std::size_t position() const { return at_; }
 
  private:
   const std::uint8_t* data_;
@@ -185,14 +186,12 @@ struct InputCounts {
   std::int64_t triangles = 0;
 };
 
-/// Reads one polytope; vertex `original` must index the input's vertices and face
-/// sources its triangles (or be -1). Records are read straight from the bytes once
-/// their count is known to fit. Not finalized: finalizeAndCheck does that for all.
-bool getPolytope(Reader& r, const InputCounts& input, ConvexPolytope& p) {
+/// Checks one polytope record and steps over it: vertex `original` must index the
+/// input's vertices and face sources its triangles (or be -1), coordinates be
+/// finite. readPolytope decodes it once every record has passed.
+bool checkPolytope(Reader& r, const InputCounts& input) {
   std::size_t nv = 0, nf = 0;
   if (!r.getCount(kVertexBytes, nv) || nv == 0) return false;
-  p.vertices.resize(nv);
-  p.original.resize(nv);
   const std::int64_t vertex_limit = input.vertices;
   const std::uint8_t* at = r.take(nv * kVertexBytes);
   for (std::size_t i = 0; i < nv; ++i, at += kVertexBytes) {
@@ -203,12 +202,8 @@ bool getPolytope(Reader& r, const InputCounts& input, ConvexPolytope& p) {
     if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]) ||
         original < 0 || original >= vertex_limit)
       return false;
-    p.vertices[i] = Vec3(xyz[0], xyz[1], xyz[2]);
-    p.original[i] = original;
   }
   if (!r.getCount(kFaceBytes, nf)) return false;
-  p.faces.resize(nf);
-  p.face_source.resize(nf);
   const std::int64_t triangle_limit = input.triangles;
   at = r.take(nf * kFaceBytes);
   for (std::size_t f = 0; f < nf; ++f, at += kFaceBytes) {
@@ -216,21 +211,51 @@ bool getPolytope(Reader& r, const InputCounts& input, ConvexPolytope& p) {
     std::memcpy(record, at, sizeof(record));
     for (int k = 0; k < 3; ++k) {
       if (record[k] < 0 || static_cast<std::size_t>(record[k]) >= nv) return false;
-      p.faces[f][k] = record[k];
     }
     if (record[3] < -1 || record[3] >= triangle_limit) return false;
-    p.face_source[f] = record[3];
   }
   return true;
 }
 
-bool getPolytopes(Reader& r, const InputCounts& input, std::vector<ConvexPolytope>& out) {
+/// Decodes the polytope record at `at`, which checkPolytope passed.
+void readPolytope(const std::uint8_t* at, PolytopeParts& p) {
+  std::uint64_t count = 0;
+  std::memcpy(&count, at, sizeof(count));
+  at += sizeof(count);
+  const auto nv = static_cast<std::size_t>(count);
+  p.vertices.resize(nv);
+  p.original.resize(nv);
+  for (std::size_t i = 0; i < nv; ++i, at += kVertexBytes) {
+    double xyz[3];
+    std::int32_t original = -1;
+    std::memcpy(xyz, at, sizeof(xyz));
+    std::memcpy(&original, at + sizeof(xyz), sizeof(original));
+    p.vertices[i] = Vec3(xyz[0], xyz[1], xyz[2]);
+    p.original[i] = original;
+  }
+  std::memcpy(&count, at, sizeof(count));
+  at += sizeof(count);
+  const auto nf = static_cast<std::size_t>(count);
+  p.faces.resize(nf);
+  p.face_source.resize(nf);
+  for (std::size_t f = 0; f < nf; ++f, at += kFaceBytes) {
+    std::int32_t record[4];
+    std::memcpy(record, at, sizeof(record));
+    p.faces[f] = Tri(record[0], record[1], record[2]);
+    p.face_source[f] = record[3];
+  }
+}
+
+/// Checks a list of polytope records, noting where each starts (from `base`).
+bool getPolytopes(Reader& r, const InputCounts& input, const std::uint8_t* base,
+                  std::vector<const std::uint8_t*>& at) {
   std::size_t n = 0;
   // Every polytope takes at least its two counts and one vertex.
   if (!r.getCount(2 * sizeof(std::uint64_t) + kVertexBytes, n)) return false;
-  out.resize(n);
-  for (ConvexPolytope& p : out) {
-    if (!getPolytope(r, input, p)) return false;
+  at.resize(n);
+  for (const std::uint8_t*& record : at) {
+    record = base + r.position();
+    if (!checkPolytope(r, input)) return false;
   }
   return true;
 }
@@ -316,27 +341,36 @@ struct PolytopeProblems {
   std::atomic<bool> real_face{false};
 };
 
-/// finalize() and the per-polytope checks against `mesh` on every leaf then every
-/// hull, on up to `threads` threads taking blocks of polytopes in turn; each
-/// polytope's result depends on it alone.
-void finalizeAndCheck(std::vector<ConvexPolytope>& leaves, std::vector<ConvexPolytope>& hulls,
-                      const MeshData& mesh, PolytopeProblems& problems, int threads) {
+/// Builds every leaf then every hull from its record, with the per-polytope checks
+/// against `mesh`, on up to `threads` threads taking blocks of polytopes in turn;
+/// each polytope's result depends on it alone. A soup's leaves keep no vertex-face
+/// lists and hulls only what queries read, as a build leaves them.
+void buildAndCheck(const PieceCacheRecords& records, ModelKind kind, const MeshData& mesh,
+                   std::vector<ConvexPolytope>& leaves, std::vector<ConvexPolytope>& hulls,
+                   PolytopeProblems& problems, int threads) {
   constexpr std::size_t kBlock = 64;
+  leaves.resize(records.patch_at.size());
+  hulls.resize(records.hull_at.size());
   const std::size_t total = leaves.size() + hulls.size();
+  const PolytopeKeep leaf_keep =
+      kind == ModelKind::TriangleSoup ? PolytopeKeep::NoFaceLists : PolytopeKeep::Everything;
   std::atomic<std::size_t> next{0};
-  auto one = [&](std::size_t i, FinalizeScratch& scratch) {
+  auto one = [&](std::size_t i, PolytopeParts& parts, FinalizeScratch& scratch) {
     const bool leaf = i < leaves.size();
-    ConvexPolytope& p = leaf ? leaves[i] : hulls[i - leaves.size()];
-    p.finalize(scratch);
+    const std::size_t j = leaf ? i : i - leaves.size();
+    readPolytope(leaf ? records.patch_at[j] : records.hull_at[j], parts);
+    ConvexPolytope& p = leaf ? leaves[j] : hulls[j];
+    p = ConvexPolytope::build(parts, scratch, leaf ? leaf_keep : PolytopeKeep::Support);
     if (!verticesAreInput(mesh, p))
       (leaf ? problems.leaf_vertex : problems.hull_vertex).store(true, std::memory_order_relaxed);
     if (leaf && !realFacesAreInput(mesh, p))
       problems.real_face.store(true, std::memory_order_relaxed);
   };
   auto work = [&] {
+    PolytopeParts parts;
     FinalizeScratch scratch;
     for (std::size_t from = next.fetch_add(kBlock); from < total; from = next.fetch_add(kBlock)) {
-      for (std::size_t i = from; i < std::min(total, from + kBlock); ++i) one(i, scratch);
+      for (std::size_t i = from; i < std::min(total, from + kBlock); ++i) one(i, parts, scratch);
     }
   };
   const std::size_t helpers =
@@ -354,9 +388,9 @@ bool innerHullsContainChildren(const std::vector<ConvexPolytope>& leaves, const 
                                double slack) {
   for (const HullBvhNode& node : bvh.nodes) {
     if (node.leaf()) continue;
-    const Aabb& box = bvh.hulls[static_cast<std::size_t>(node.polytope)].bounds;
+    const Aabb box = bvh.hulls[static_cast<std::size_t>(node.polytope)].bounds();
     for (const int child : {node.left, node.right}) {
-      const Aabb& inner = bvh.polytope(leaves, child).bounds;
+      const Aabb inner = bvh.polytope(leaves, child).bounds();
       if ((inner.min.array() < box.min.array() - slack).any() ||
           (inner.max.array() > box.max.array() + slack).any())
         return false;
@@ -365,7 +399,7 @@ bool innerHullsContainChildren(const std::vector<ConvexPolytope>& leaves, const 
   return true;
 }
 
-/// What makes finalized leaves and hierarchy (structurally valid) not a
+/// What makes built leaves and hierarchy (structurally valid) not a
 /// preprocessing of `mesh`, or null. Linear in the decoded size.
 const char* contentProblem(const MeshData& mesh, const std::vector<ConvexPolytope>& leaves,
                            const HullBvh& bvh, const PolytopeProblems& problems) {
@@ -392,7 +426,7 @@ const char* readPayload(const std::uint8_t* payload, std::size_t size, const Inp
   if (!r.get(convex) || convex > 1 || !r.get(virtual_faces) || virtual_faces < 0) return malformed;
   out.convex = convex != 0;
   out.virtual_faces = virtual_faces;
-  if (!getPolytopes(r, input, out.patches)) return malformed;
+  if (!getPolytopes(r, input, payload, out.patch_at)) return malformed;
   std::size_t node_count = 0;
   if (!r.getCount(kNodeBytes, node_count)) return malformed;
   out.hierarchy.nodes.resize(node_count);
@@ -403,7 +437,7 @@ const char* readPayload(const std::uint8_t* payload, std::size_t size, const Inp
     n.right = right;
     n.polytope = polytope;
   }
-  if (!getPolytopes(r, input, out.hierarchy.hulls) || !r.done()) return malformed;
+  if (!getPolytopes(r, input, payload, out.hull_at) || !r.done()) return malformed;
   return nullptr;
 }
 
@@ -534,19 +568,16 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 bool acceptPieceCacheRecords(PieceCacheRecords&& records, PieceData& data, std::string* rejected,
                              int threads) {
   PolytopeProblems problems;
-  finalizeAndCheck(records.patches, records.hierarchy.hulls, data.mesh, problems, threads);
-  if (data.kind == ModelKind::TriangleSoup) {
-    for (ConvexPolytope& leaf : records.patches) dropSoupLeafFaceLists(leaf);
-  }
-  const char* problem =
-      finishHullBvh(records.patches, records.hierarchy)
-          ? contentProblem(data.mesh, records.patches, records.hierarchy, problems)
-          : "its hierarchy is not a tree over its leaves";
+  std::vector<ConvexPolytope> leaves;
+  buildAndCheck(records, data.kind, data.mesh, leaves, records.hierarchy.hulls, problems, threads);
+  const char* problem = finishHullBvh(leaves, records.hierarchy)
+                            ? contentProblem(data.mesh, leaves, records.hierarchy, problems)
+                            : "its hierarchy is not a tree over its leaves";
   if (problem != nullptr) {
     if (rejected != nullptr) *rejected = problem;
     return false;
   }
-  data.patches = std::move(records.patches);
+  data.patches = std::move(leaves);
   data.hierarchy = std::move(records.hierarchy);
   fillStats(data, records.convex, records.virtual_faces);
   return true;
@@ -622,6 +653,7 @@ bool readPieceCacheRecords(const std::string& path,
     return false;
   }
   out = std::move(records);
+  out.bytes = std::move(bytes);  // the records point into them
   return true;
 }
 

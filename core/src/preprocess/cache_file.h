@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,17 +46,21 @@ std::vector<std::uint8_t> encodePieceCache(std::uint64_t input_hash, const Piece
 /// the leaves and every inner hull's box contains its children's. A file failing
 /// those (forged, or written by a bug) sets `*rejected` (if given) to the reason;
 /// a damaged, stale or foreign file leaves it unchanged. The polytopes' derived
-/// arrays (finalize) are computed on up to `threads` threads; same result for any count.
+/// arrays (ConvexPolytope::build) are computed on up to `threads` threads; same result
+/// for any count.
 bool decodePieceCache(const std::vector<std::uint8_t>& bytes, std::uint64_t input_hash,
                       PieceData& data, std::string* rejected = nullptr, int threads = 1);
 
-/// A file's records as read, before they are finalized and checked against the
-/// input's contents.
+/// A file's records as read, before the polytopes are built and checked against
+/// the input's contents: each polytope as where its checked record starts in the
+/// file's bytes (`bytes`, or the caller's for decodePieceCache).
 struct PieceCacheRecords {
   bool convex = false;
   int virtual_faces = 0;
-  std::vector<ConvexPolytope> patches;
-  HullBvh hierarchy;  ///< nodes and hulls only: finishHullBvh not yet run
+  std::vector<const std::uint8_t*> patch_at;
+  std::vector<const std::uint8_t*> hull_at;
+  HullBvh hierarchy;  ///< nodes only: hulls and finishHullBvh come with the polytopes
+  std::unique_ptr<std::uint8_t[]> bytes;
 };
 
 /// The first half of loadPieceCache: the file's header, checksum and records, every
@@ -70,7 +75,7 @@ bool readPieceCacheRecords(const std::string& path,
                            std::size_t vertex_count, std::size_t triangle_count,
                            PieceCacheRecords& out, std::string* rejected = nullptr);
 
-/// The second half: finalizes the records on up to `threads` threads, checks them
+/// The second half: builds the polytopes on up to `threads` threads, checks them
 /// against `data.mesh` as decodePieceCache does, and moves them into `data`; false
 /// (setting `*rejected`, `data` unchanged) when they are not its preprocessing.
 bool acceptPieceCacheRecords(PieceCacheRecords&& records, PieceData& data,

@@ -213,7 +213,7 @@ Result<ConvexPolytope> convexHull(const std::vector<Vec3>& points,
   }
   // Compact to the vertices the faces use.
   std::vector<int> index_of(points.size(), -1);
-  ConvexPolytope hull;
+  PolytopeParts hull;
   for (Tri& f : faces) {
     for (int k = 0; k < 3; ++k) {
       int& slot = index_of[f[k]];
@@ -227,8 +227,7 @@ Result<ConvexPolytope> convexHull(const std::vector<Vec3>& points,
   }
   hull.faces = std::move(faces);
   hull.face_source.assign(hull.faces.size(), -1);
-  hull.finalize();
-  return hull;
+  return ConvexPolytope::build(hull);
 }
 
 }  // namespace sc::detail

@@ -45,12 +45,10 @@ Mat3 principalAxes(const std::vector<Vec3>& points, const int* ids, int count) {
 }
 
 /// A polytope of bare points (no faces): GJK scans its vertices.
-ConvexPolytope pointSet(const std::vector<Vec3>& points, const std::vector<int>& original) {
-  ConvexPolytope poly;
-  poly.vertices = points;
-  poly.original = original;
-  poly.finalize();
-  return poly;
+ConvexPolytope pointSet(PolytopeParts& parts) {
+  parts.faces.clear();
+  parts.face_source.clear();
+  return ConvexPolytope::build(parts, PolytopeKeep::Support);
 }
 
 /// 2-D hull of points lying in a plane (within rounding): Andrew's monotone chain
@@ -80,25 +78,19 @@ ConvexPolytope flatHull(const std::vector<Vec3>& points, const std::vector<int>&
     chain[k++] = *it;
   }
   if (k > 1) --k;  // the last point repeats the first
-  std::vector<Vec3> kept;
-  std::vector<int> kept_original;
+  PolytopeParts kept;
   for (int m = 0; m < k; ++m) {
-    kept.push_back(points[chain[m]]);
-    kept_original.push_back(original[chain[m]]);
+    kept.vertices.push_back(points[chain[m]]);
+    kept.original.push_back(original[chain[m]]);
   }
-  return pointSet(kept, kept_original);
+  return pointSet(kept);
 }
 
-/// Frees what no query reads of an inner node's polytope: the traversal only takes
-/// its support points (vertices, adjacency) and bounds; the source of every face
-/// is -1 (virtual), which an absent face_source also says, and the vertex-face
-/// lists serve the leaves' features only. Faces stay: the cache file stores them
-/// and a load rebuilds the adjacency from them. About a tenth of a soup's memory.
-void releaseUnread(ConvexPolytope& hull) {
-  std::vector<int>().swap(hull.face_source);
-  std::vector<int>().swap(hull.vertex_face_start);
-  std::vector<int>().swap(hull.vertex_faces);
-}
+/// An inner node's polytope keeps only what queries read of it (PolytopeKeep::
+/// Support): the traversal takes its support points (vertices, adjacency) and
+/// bounds; the source of every face is -1 (virtual), which an absent face_source
+/// also says, and the vertex-face lists serve the leaves' features only. Faces
+/// stay: the cache file stores them and a load rebuilds the adjacency from them.
 
 /// Inner nodes of one depth whose hulls are built by one thread.
 constexpr int kMinNodesPerThread = 64;
@@ -178,11 +170,11 @@ class Builder {
   /// (`report`) reports progress.
   void buildNodes(const std::vector<int>& nodes, int first, int stride, bool report) {
     std::vector<Keyed> keyed;
+    PolytopeParts parts;  // reused: its arrays keep their capacity
     QuickHullWorkspace work;
     for (std::size_t k = first; k < nodes.size(); k += stride) {
       const HullBvhNode& node = bvh_.nodes[nodes[k]];
-      bvh_.hulls[node.polytope] = hullOf(node.left, node.right, keyed, work);
-      releaseUnread(bvh_.hulls[node.polytope]);
+      bvh_.hulls[node.polytope] = hullOf(node.left, node.right, keyed, parts, work);
       ++inner_done_;
       if (report) reportProgress(false);
     }
@@ -199,7 +191,7 @@ class Builder {
   };
 
   /// Hull of the children's vertices, each input vertex once.
-  ConvexPolytope hullOf(int left, int right, std::vector<Keyed>& keyed,
+  ConvexPolytope hullOf(int left, int right, std::vector<Keyed>& keyed, PolytopeParts& parts,
                         QuickHullWorkspace& work) const {
     keyed.clear();
     for (const int child : {left, right}) {
@@ -212,10 +204,10 @@ class Builder {
     // Shared input vertices once: same original index and the same point.
     std::stable_sort(keyed.begin(), keyed.end(),
                      [](const Keyed& a, const Keyed& b) { return a.original < b.original; });
-    std::vector<Vec3> points;
-    std::vector<int> original;
-    points.reserve(keyed.size());  // temporaries: one allocation each, not a doubling series
-    original.reserve(keyed.size());
+    std::vector<Vec3>& points = parts.vertices;
+    std::vector<int>& original = parts.original;
+    points.clear();
+    original.clear();
     for (std::size_t k = 0; k < keyed.size(); ++k) {
       if (k > 0 && keyed[k].original == keyed[k - 1].original &&
           *keyed[k].point == *keyed[k - 1].point)
@@ -223,11 +215,11 @@ class Builder {
       points.push_back(*keyed[k].point);
       original.push_back(keyed[k].original);
     }
-    if (static_cast<int>(points.size()) <= kPointSetLimit) return pointSet(points, original);
+    if (static_cast<int>(points.size()) <= kPointSetLimit) return pointSet(parts);
     ConvexPolytope quick;
-    if (quickHull(points, original, work, quick)) return quick;
+    if (quickHull(points, original, work, quick, PolytopeKeep::Support)) return quick;
     Result<ConvexPolytope> hull = convexHull(points, original);
-    if (hull.ok()) return std::move(hull.value());
+    if (hull.ok()) return hull.value().reduced(PolytopeKeep::Support);
     return flatHull(points, original);
   }
 
@@ -295,7 +287,6 @@ bool finishHullBvh(const std::vector<ConvexPolytope>& leaves, HullBvh& bvh) {
   }
   // With 2n - 1 nodes all reached, the n leaves and n - 1 hulls are each used once.
   if (std::find(node_seen.begin(), node_seen.end(), 0) != node_seen.end()) return false;
-  for (ConvexPolytope& hull : bvh.hulls) releaseUnread(hull);  // a loaded file's
   for (HullBvhNode& node : bvh.nodes) {
     const ConvexPolytope& p = node.leaf() ? leaves[node.polytope] : bvh.hulls[node.polytope];
     node.center = p.center;

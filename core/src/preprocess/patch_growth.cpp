@@ -160,12 +160,12 @@ Result<PatchPolytope> Decomposer::evaluate(int count, HullCheck mode) {
   // Small hulls have fewer planes than the outer bound: prune with their own.
   std::vector<Plane> outer;
   if (poly.planes.size() > kOwnPlanesUpTo) outer = outerPlanes(poly.polytope);
-  if (!poly.flat && reachesInside(shared_, region_tree_, in_tree, poly.planes, poly.polytope.bounds,
-                                  -1, std::move(outer))) {
+  if (!poly.flat && reachesInside(shared_, region_tree_, in_tree, poly.planes,
+                                  poly.polytope.bounds(), -1, std::move(outer))) {
     return Status(ErrorCode::InvalidGeometry, "patch: a triangle reaches into its hull");
   }
   for (const std::array<Plane, 5>& prism : poly.probes) {
-    Aabb bounds = poly.polytope.bounds;
+    Aabb bounds = poly.polytope.bounds();
     const Vec3 depth = Vec3::Constant(kProbeDepth * tol_);
     bounds.min -= depth;
     bounds.max += depth;
@@ -380,14 +380,14 @@ PatchPolytope Decomposer::twoSided(int t) const {
   PatchPolytope patch;
   patch.flat = true;
   patch.virtual_faces = 1;
-  ConvexPolytope& poly = patch.polytope;
+  PolytopeParts poly;
   for (int k = 0; k < 3; ++k) {
     poly.vertices.push_back(mesh_.vertices[mesh_.triangles[t][k]]);
     poly.original.push_back(mesh_.triangles[t][k]);
   }
   poly.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
   poly.face_source = {t, -1};
-  poly.finalize();
+  patch.polytope = ConvexPolytope::build(poly);
   return patch;
 }
 

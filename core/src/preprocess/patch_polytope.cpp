@@ -226,8 +226,9 @@ bool Builder::trianglesSupport() const {
 // Outward planes of the hull's faces: qhull's, or without qhull those of the
 // patch triangles and virtual faces (all on supporting planes by construction).
 void Builder::facePlanes() {
-  const std::vector<Vec3>& vertices = use_qhull_ ? hull_.vertices : points_;
-  std::vector<Tri> faces = use_qhull_ ? hull_.faces : tris_;
+  const Vec3* vertices = use_qhull_ ? hull_.vertices.data() : points_.data();
+  std::vector<Tri> faces =
+      use_qhull_ ? std::vector<Tri>(hull_.faces.begin(), hull_.faces.end()) : tris_;
   if (!use_qhull_) faces.insert(faces.end(), virtual_.begin(), virtual_.end());
   for (const Tri& f : faces) {
     const Vec3& a = vertices[f[0]];
@@ -529,7 +530,7 @@ Result<PatchPolytope> Builder::run() {
   out_.used_qhull = use_qhull_;
   addProbes();
 
-  ConvexPolytope& poly = out_.polytope;
+  PolytopeParts poly;
   poly.vertices = std::move(points_);
   poly.original = std::move(verts_);
   poly.faces = std::move(tris_);
@@ -537,7 +538,7 @@ Result<PatchPolytope> Builder::run() {
   poly.faces.insert(poly.faces.end(), virtual_.begin(), virtual_.end());
   poly.face_source.resize(poly.faces.size(), -1);
   out_.virtual_faces = static_cast<int>(virtual_.size());
-  poly.finalize();
+  out_.polytope = ConvexPolytope::build(poly);
   return std::move(out_);
 }
 

@@ -58,7 +58,7 @@ ConvexPolytope convexPatch(const MeshData& mesh) {
   for (const Tri& f : mesh.triangles) {
     for (int k = 0; k < 3; ++k) compact[static_cast<std::size_t>(f[k])] = 0;
   }
-  ConvexPolytope patch;
+  detail::PolytopeParts patch;
   for (std::size_t i = 0; i < compact.size(); ++i) {
     if (compact[i] < 0) continue;
     compact[i] = static_cast<int>(patch.vertices.size());
@@ -70,29 +70,30 @@ ConvexPolytope convexPatch(const MeshData& mesh) {
     patch.faces.emplace_back(compact[f[0]], compact[f[1]], compact[f[2]]);
     patch.face_source.push_back(static_cast<int>(t));
   }
-  patch.finalize();
-  return patch;
+  return ConvexPolytope::build(patch);
 }
 
 /// A soup's leaves are its triangles, each a two-sided wall: a polytope of three
 /// vertices (coincident ones for a degenerate triangle) with both windings as faces.
+/// Without vertex-face lists: its two faces hold all three vertices, so the readers'
+/// scan of the faces finds the same faces in the same order. Its faces and
+/// adjacency are the shared constants of a two-sided triangle.
 void buildSoupLeaves(PieceData& data) {
   data.patches.reserve(data.mesh.triangles.size());
   detail::FinalizeScratch scratch;
+  detail::PolytopeParts leaf;
+  leaf.vertices.resize(3);
+  leaf.original.resize(3);
+  leaf.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
+  leaf.face_source.resize(2);
   for (std::size_t t = 0; t < data.mesh.triangles.size(); ++t) {
     const Tri& f = data.mesh.triangles[t];
-    ConvexPolytope leaf;
-    leaf.vertices.reserve(3);  // exact: three push_backs would grow to four, in three steps
-    leaf.original.reserve(3);
     for (int k = 0; k < 3; ++k) {
-      leaf.vertices.push_back(data.mesh.vertices[static_cast<std::size_t>(f[k])]);
-      leaf.original.push_back(f[k]);
+      leaf.vertices[k] = data.mesh.vertices[static_cast<std::size_t>(f[k])];
+      leaf.original[k] = f[k];
     }
-    leaf.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
-    leaf.face_source = {static_cast<int>(t), static_cast<int>(t)};
-    leaf.finalize(scratch);
-    detail::dropSoupLeafFaceLists(leaf);
-    data.patches.push_back(std::move(leaf));
+    leaf.face_source[0] = leaf.face_source[1] = static_cast<int>(t);
+    data.patches.push_back(ConvexPolytope::build(leaf, scratch, detail::PolytopeKeep::NoFaceLists));
   }
   data.stats.patches = static_cast<int>(data.patches.size());
   data.stats.hull_vertices = 3 * data.stats.patches;

@@ -24,12 +24,4 @@ struct PieceData {
   HullBvh hierarchy;
 };
 
-/// Frees a soup leaf's vertex-face lists after finalize(): its two faces hold all
-/// three vertices, so the readers' scan of the faces (taken when the lists are
-/// empty) finds the same faces in the same order. 64 bytes per soup triangle.
-inline void dropSoupLeafFaceLists(ConvexPolytope& leaf) {
-  std::vector<int>().swap(leaf.vertex_face_start);
-  std::vector<int>().swap(leaf.vertex_faces);
-}
-
 }  // namespace sc::detail

@@ -41,15 +41,19 @@ class QuickHull {
   QuickHull(const std::vector<Vec3>& points, QuickHullWorkspace& work)
       : p_(points), w_(work), faces_(work.faces) {}
 
-  bool run(const std::vector<int>& original, ConvexPolytope& out) {
+  bool run(const std::vector<int>& original, ConvexPolytope& out, PolytopeKeep keep) {
     if (p_.size() < 4) return false;
     w_.excluded.assign(p_.size(), 0);
     w_.dropped.clear();
     for (int attempt = 0; attempt < kAttempts; ++attempt) {
-      if (!build() || !collect(original, out)) return false;
+      if (!build() || !collect(original)) return false;
       const std::size_t before = w_.dropped.size();
-      dropNonCorners(out);
-      if (w_.dropped.size() == before) return droppedInside();
+      dropNonCorners();
+      if (w_.dropped.size() != before) continue;
+      if (!droppedInside()) return false;
+      releaseUnpacked(keep);
+      out = ConvexPolytope::pack(parts_, lists_, keep);
+      return true;
     }
     return false;
   }
@@ -113,13 +117,27 @@ class QuickHull {
   bool initialSimplex();
   bool addEye(int face);
   bool findHorizon(int face, int eye);
-  bool collect(const std::vector<int>& original, ConvexPolytope& out);
-  void dropNonCorners(const ConvexPolytope& out);
+  bool collect(const std::vector<int>& original);
+  /// Frees the working lists `keep` does not pack before the block is made: at the
+  /// top of a hierarchy they are about as large as the polytope.
+  void releaseUnpacked(PolytopeKeep keep) {
+    std::vector<int>().swap(lists_.fill);
+    std::vector<int>().swap(lists_.mark);
+    std::vector<int>().swap(lists_.entries);
+    if (keep == PolytopeKeep::Everything) return;
+    std::vector<int>().swap(lists_.vertex_face_start);
+    std::vector<int>().swap(lists_.vertex_faces);
+  }
+  void dropNonCorners();
   bool droppedInside() const;
 
   const std::vector<Vec3>& p_;
   QuickHullWorkspace& w_;
   std::vector<QuickHullWorkspace::Face>& faces_;
+  /// The hull's arrays and derived lists before packing; freed with the call, as a
+  /// hull's arrays are as large as the polytope itself.
+  PolytopeParts parts_;
+  FinalizeScratch lists_;
   int serial_ = 0;
   double tol_ = 0.0;
 };
@@ -319,10 +337,13 @@ bool QuickHull::addEye(int face) {
   return true;
 }
 
-bool QuickHull::collect(const std::vector<int>& original, ConvexPolytope& out) {
+bool QuickHull::collect(const std::vector<int>& original) {
   w_.vertex_slot.assign(p_.size(), -1);
   w_.slot_point.clear();
-  out = ConvexPolytope();
+  PolytopeParts& parts = parts_;
+  parts.vertices.clear();
+  parts.original.clear();
+  parts.faces.clear();
   // The live faces in the order they were made, whatever slots they took.
   std::vector<int>& alive = w_.alive;
   alive.clear();
@@ -330,11 +351,6 @@ bool QuickHull::collect(const std::vector<int>& original, ConvexPolytope& out) {
     if (faces_[f].alive) alive.push_back(f);
   std::sort(alive.begin(), alive.end(),
             [&](int a, int b) { return faces_[a].serial < faces_[b].serial; });
-  // A closed triangulated sphere has F / 2 + 2 vertices: exact sizes, no slack.
-  const std::size_t face_count = alive.size();
-  out.faces.reserve(face_count);
-  out.vertices.reserve(face_count / 2 + 2);
-  out.original.reserve(face_count / 2 + 2);
   for (const int f : alive) {
     const QuickHullWorkspace::Face& face = faces_[f];
     // Convex within the tolerance: each neighbour's far corner is below this face.
@@ -348,35 +364,38 @@ bool QuickHull::collect(const std::vector<int>& original, ConvexPolytope& out) {
     for (int k = 0; k < 3; ++k) {
       int& slot = w_.vertex_slot[face.v[k]];
       if (slot < 0) {
-        slot = static_cast<int>(out.vertices.size());
+        slot = static_cast<int>(parts.vertices.size());
         w_.slot_point.push_back(face.v[k]);
-        out.vertices.push_back(p_[face.v[k]]);
-        out.original.push_back(original.empty() ? face.v[k] : original[face.v[k]]);
+        parts.vertices.push_back(p_[face.v[k]]);
+        parts.original.push_back(original.empty() ? face.v[k] : original[face.v[k]]);
       }
       tri[k] = slot;
     }
-    out.faces.push_back(tri);
+    parts.faces.push_back(tri);
   }
-  out.face_source.assign(out.faces.size(), -1);
-  out.finalize();
-  return out.faces.size() >= 4;
+  parts.face_source.assign(parts.faces.size(), -1);
+  ConvexPolytope::derive(parts, lists_);
+  return parts.faces.size() >= 4;
 }
 
 // A vertex no direction separates from its neighbours is on an edge or inside a
 // face: hill climbing could stop there. Such vertices are dropped.
-void QuickHull::dropNonCorners(const ConvexPolytope& out) {
-  const int n = static_cast<int>(out.vertices.size());
+void QuickHull::dropNonCorners() {
+  const std::vector<Vec3>& vertices = parts_.vertices;
+  const std::vector<Tri>& faces = parts_.faces;
+  const FinalizeScratch& out = lists_;
+  const int n = static_cast<int>(vertices.size());
   for (int v = 0; v < n; ++v) {
     Vec3 direction = Vec3::Zero();
     for (int k = out.vertex_face_start[v]; k < out.vertex_face_start[v + 1]; ++k) {
-      const Tri& f = out.faces[out.vertex_faces[k]];
-      const Vec3& a = out.vertices[f[0]];
-      direction += (out.vertices[f[1]] - a).cross(out.vertices[f[2]] - a).normalized();
+      const Tri& f = faces[out.vertex_faces[k]];
+      const Vec3& a = vertices[f[0]];
+      direction += (vertices[f[1]] - a).cross(vertices[f[2]] - a).normalized();
     }
     const double length = direction.norm();
     bool corner = length > 0.0;
     for (int k = out.adjacency_start[v]; corner && k < out.adjacency_start[v + 1]; ++k) {
-      const Vec3 edge = out.vertices[out.adjacency[k]] - out.vertices[v];
+      const Vec3 edge = vertices[out.adjacency[k]] - vertices[v];
       corner = direction.dot(edge) < -kCorner * length * edge.norm();
     }
     if (corner) continue;
@@ -397,12 +416,12 @@ bool QuickHull::droppedInside() const {
 }  // namespace
 
 bool quickHull(const std::vector<Vec3>& points, const std::vector<int>& original,
-               QuickHullWorkspace& work, ConvexPolytope& out) {
+               QuickHullWorkspace& work, ConvexPolytope& out, PolytopeKeep keep) {
   if (!original.empty() && original.size() != points.size()) return false;
   for (const Vec3& p : points) {
     if (!allFinite(p)) return false;
   }
-  return QuickHull(points, work).run(original, out);
+  return QuickHull(points, work).run(original, out, keep);
 }
 
 }  // namespace sc::detail

@@ -54,7 +54,9 @@ struct QuickHullWorkspace {
 /// corner and every edge convex, as convexHull gives. False, with `out` unspecified,
 /// when the points are (nearly) flat or the result fails those checks: then qhull
 /// is to decide.
+/// `keep` as in ConvexPolytope::build.
 bool quickHull(const std::vector<Vec3>& points, const std::vector<int>& original,
-               QuickHullWorkspace& work, ConvexPolytope& out);
+               QuickHullWorkspace& work, ConvexPolytope& out,
+               PolytopeKeep keep = PolytopeKeep::Everything);
 
 }  // namespace sc::detail

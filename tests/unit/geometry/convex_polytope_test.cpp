@@ -76,8 +76,8 @@ TEST(ConvexPolytope, FinalizeBuildsSymmetricAdjacencyAndBounds) {
       EXPECT_NE(std::find(first, last, v), last);
     }
   }
-  EXPECT_VEC_NEAR(box.bounds.min, Vec3(-1, -2, -3), 0.0);
-  EXPECT_VEC_NEAR(box.bounds.max, Vec3(1, 2, 3), 0.0);
+  EXPECT_VEC_NEAR(box.bounds().min, Vec3(-1, -2, -3), 0.0);
+  EXPECT_VEC_NEAR(box.bounds().max, Vec3(1, 2, 3), 0.0);
   EXPECT_NEAR(box.radius, std::sqrt(14.0), 1e-12);
 }
 
@@ -116,25 +116,25 @@ TEST(ConvexPolytope, FinalizeAdjacencyEqualsTheFaceEdges) {
 // exactly the vertices each vertex shares a face with, sorted and once each.
 TEST(ConvexPolytope, FinalizeAdjacencyOfOpenOrMiswoundFacesEqualsTheFaceEdges) {
   test::Rng rng(79);
-  std::vector<ConvexPolytope> cases;
-  ConvexPolytope one;
+  std::vector<PolytopeParts> cases;
+  PolytopeParts one;
   one.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(5, 5, 5)};
   one.faces = {Tri(0, 1, 2)};
   cases.push_back(one);
   std::vector<Vec3> points;
   for (int i = 0; i < 40; ++i) points.push_back(test::randomDirection(rng));
-  ConvexPolytope turned = test::hullOf(points);
+  PolytopeParts turned = test::hullOf(points).parts();
   std::swap(turned.faces[3][1], turned.faces[3][2]);
   cases.push_back(turned);
   std::uniform_int_distribution<int> pick(0, 11);
   for (int trial = 0; trial < 20; ++trial) {
-    ConvexPolytope random;
+    PolytopeParts random;
     random.vertices.assign(12, Vec3::Zero());
     for (int f = 0; f < 3 + trial; ++f) random.faces.emplace_back(pick(rng), pick(rng), pick(rng));
     cases.push_back(random);
   }
-  for (ConvexPolytope& poly : cases) {
-    poly.finalize();
+  for (const PolytopeParts& parts : cases) {
+    const ConvexPolytope poly = ConvexPolytope::build(parts);
     const int n = static_cast<int>(poly.vertices.size());
     std::vector<std::set<int>> neighbours(n);
     for (const Tri& f : poly.faces) {
@@ -157,9 +157,9 @@ TEST(ConvexPolytope, FinalizeAdjacencyOfOpenOrMiswoundFacesEqualsTheFaceEdges) {
 // which faced polytopes hill-climb.
 TEST(ConvexPolytope, PointSetHasNoAdjacencyAndScansForItsSupport) {
   test::Rng rng(78);
-  ConvexPolytope points;
-  for (int i = 0; i < 40; ++i) points.vertices.push_back(test::randomDirection(rng));
-  points.finalize();
+  PolytopeParts parts;
+  for (int i = 0; i < 40; ++i) parts.vertices.push_back(test::randomDirection(rng));
+  const ConvexPolytope points = ConvexPolytope::build(parts);
   EXPECT_TRUE(points.adjacency_start.empty() && points.adjacency.empty());
   EXPECT_TRUE(points.vertex_face_start.empty() && points.vertex_faces.empty());
   for (int trial = 0; trial < 50; ++trial) {
@@ -168,6 +168,86 @@ TEST(ConvexPolytope, PointSetHasNoAdjacencyAndScansForItsSupport) {
     const int got = points.support(d, hint);
     EXPECT_EQ(points.vertices[got].dot(d), supportValue(points, d));
   }
+}
+
+/// The adjacency and vertex-face lists recomputed from the faces alone.
+void expectListsFromFaces(const ConvexPolytope& poly) {
+  const int n = static_cast<int>(poly.vertices.size());
+  std::vector<std::set<int>> neighbours(n);
+  std::vector<std::vector<int>> around(n);
+  for (int f = 0; f < static_cast<int>(poly.faces.size()); ++f) {
+    const Tri& t = poly.faces[f];
+    for (int k = 0; k < 3; ++k) {
+      around[t[k]].push_back(f);
+      for (int j = 0; j < 3; ++j)
+        if (t[j] != t[k]) neighbours[t[k]].insert(t[j]);
+    }
+  }
+  ASSERT_EQ(poly.adjacency_start.size(), static_cast<std::size_t>(n + 1));
+  ASSERT_EQ(poly.vertex_face_start.size(), static_cast<std::size_t>(n + 1));
+  for (int v = 0; v < n; ++v) {
+    const std::vector<int> adjacent(poly.adjacency.begin() + poly.adjacency_start[v],
+                                    poly.adjacency.begin() + poly.adjacency_start[v + 1]);
+    EXPECT_EQ(adjacent, std::vector<int>(neighbours[v].begin(), neighbours[v].end())) << v;
+    const std::vector<int> faces(poly.vertex_faces.begin() + poly.vertex_face_start[v],
+                                 poly.vertex_faces.begin() + poly.vertex_face_start[v + 1]);
+    EXPECT_EQ(faces, around[v]) << v;
+  }
+}
+
+// A two-sided triangle (a soup's leaf) takes its faces, adjacency and vertex-face
+// lists from shared constants: they must be what the faces give, for every kind of
+// polytope that keeps them, and the owned arrays its own.
+TEST(ConvexPolytope, TwoSidedTriangleSharesListsEqualToTheFaceEdges) {
+  PolytopeParts parts;
+  parts.vertices = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 3, 1)};
+  parts.original = {7, 4, 9};
+  parts.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
+  parts.face_source = {5, 5};
+  const ConvexPolytope a = ConvexPolytope::build(parts);
+  const ConvexPolytope b = ConvexPolytope::build(parts);
+  expectListsFromFaces(a);
+  EXPECT_EQ(a.faces.data(), b.faces.data());  // shared
+  EXPECT_EQ(a.adjacency.data(), b.adjacency.data());
+  EXPECT_NE(a.vertices.data(), b.vertices.data());  // owned
+  EXPECT_NE(a.face_source.data(), b.face_source.data());
+  EXPECT_EQ(std::vector<int>(a.original.begin(), a.original.end()), parts.original);
+  EXPECT_EQ(std::vector<int>(a.face_source.begin(), a.face_source.end()), parts.face_source);
+  const ConvexPolytope soup = ConvexPolytope::build(parts, PolytopeKeep::NoFaceLists);
+  EXPECT_TRUE(soup.vertex_face_start.empty() && soup.vertex_faces.empty());
+  EXPECT_EQ(soup.adjacency, a.adjacency);
+  EXPECT_EQ(soup.face_source, a.face_source);
+}
+
+// Copies own their arrays (equal contents, another block) and keep shared ones;
+// a moved-from polytope is empty; reduced() drops exactly what it says.
+TEST(ConvexPolytope, CopyMoveAndReduceKeepEveryArray) {
+  std::vector<Vec3> points;
+  test::Rng rng(80);
+  for (int i = 0; i < 60; ++i) points.push_back(test::randomDirection(rng));
+  const ConvexPolytope hull = test::hullOf(points);
+  ConvexPolytope copy = hull;
+  EXPECT_EQ(copy.vertices, hull.vertices);
+  EXPECT_EQ(copy.original, hull.original);
+  EXPECT_EQ(copy.faces, hull.faces);
+  EXPECT_EQ(copy.face_source, hull.face_source);
+  EXPECT_EQ(copy.adjacency_start, hull.adjacency_start);
+  EXPECT_EQ(copy.adjacency, hull.adjacency);
+  EXPECT_EQ(copy.vertex_face_start, hull.vertex_face_start);
+  EXPECT_EQ(copy.vertex_faces, hull.vertex_faces);
+  EXPECT_EQ(copy.center, hull.center);
+  EXPECT_EQ(copy.radius, hull.radius);
+  EXPECT_NE(copy.vertices.data(), hull.vertices.data());
+  expectListsFromFaces(copy);
+  const ConvexPolytope support = copy.reduced(PolytopeKeep::Support);
+  EXPECT_TRUE(support.face_source.empty() && support.vertex_face_start.empty() &&
+              support.vertex_faces.empty());
+  EXPECT_EQ(support.vertices, hull.vertices);
+  EXPECT_EQ(support.faces, hull.faces);
+  EXPECT_EQ(support.adjacency, hull.adjacency);
+  const ConvexPolytope moved = std::move(copy);
+  EXPECT_EQ(moved.vertices, hull.vertices);
+  EXPECT_TRUE(copy.vertices.empty() && copy.faces.empty() && copy.adjacency.empty());  // NOLINT
 }
 
 }  // namespace

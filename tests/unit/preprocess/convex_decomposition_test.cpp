@@ -202,7 +202,7 @@ void expectValidDecomposition(const MeshData& mesh, const std::set<Cell>& cells,
     }
     // Every empty voxel the hull's box touches (voxels beyond it cannot overlap).
     const std::vector<Vec3> axes = separatingAxes(poly);
-    const Vec3 lo = poly.bounds.min.array().floor(), hi = poly.bounds.max.array().ceil();
+    const Vec3 lo = poly.bounds().min.array().floor(), hi = poly.bounds().max.array().ceil();
     for (int x = static_cast<int>(lo.x()); x < static_cast<int>(hi.x()); ++x) {
       for (int y = static_cast<int>(lo.y()); y < static_cast<int>(hi.y()); ++y) {
         for (int z = static_cast<int>(lo.z()); z < static_cast<int>(hi.z()); ++z) {

@@ -19,14 +19,14 @@ namespace {
 
 /// Every directed edge once, its reverse once; Euler characteristic 2.
 void expectClosedOutward(const ConvexPolytope& hull) {
-  EXPECT_TRUE(test::eachEdgeOnceEachWay(hull.faces));
+  EXPECT_TRUE(test::eachEdgeOnceEachWay({hull.faces.begin(), hull.faces.end()}));
   const int v = static_cast<int>(hull.vertices.size());
   const int e = 3 * static_cast<int>(hull.faces.size()) / 2;
   const int f = static_cast<int>(hull.faces.size());
   EXPECT_EQ(v - e + f, 2);
   // Outward and non-degenerate: every vertex is on the inner side of every face,
   // and each face has area.
-  const double size = (hull.bounds.max - hull.bounds.min).norm();
+  const double size = (hull.bounds().max - hull.bounds().min).norm();
   for (const Tri& t : hull.faces) {
     const Vec3 n = (hull.vertices[t[1]] - hull.vertices[t[0]])
                        .cross(hull.vertices[t[2]] - hull.vertices[t[0]]);

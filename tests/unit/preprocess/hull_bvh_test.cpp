@@ -69,7 +69,7 @@ void expectValidHierarchy(const std::vector<ConvexPolytope>& leaves, const HullB
     const double size = 1e-12 * (1.0 + poly.radius + poly.center.norm());
     EXPECT_LE(level, bvh.depth);
     for (const Vec3& v : poly.vertices) EXPECT_LE((v - node.center).norm(), node.radius + size);
-    if (node.leaf()) return poly.vertices;
+    if (node.leaf()) return std::vector<Vec3>(poly.vertices.begin(), poly.vertices.end());
     std::vector<Vec3> points = below(node.left, level + 1);
     const std::vector<Vec3> right = below(node.right, level + 1);
     points.insert(points.end(), right.begin(), right.end());

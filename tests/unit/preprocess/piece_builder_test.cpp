@@ -68,8 +68,8 @@ TEST(BuildPiece, ConvexPieceIsOnePatchWithOriginalIndices) {
     EXPECT_GE(degree, 3);
     EXPECT_LE(degree, 6);
   }
-  EXPECT_VEC_NEAR(patch.bounds.min, Vec3::Zero(), 0.0);
-  EXPECT_VEC_NEAR(patch.bounds.max, Vec3::Ones(), 0.0);
+  EXPECT_VEC_NEAR(patch.bounds().min, Vec3::Zero(), 0.0);
+  EXPECT_VEC_NEAR(patch.bounds().max, Vec3::Ones(), 0.0);
 
   EXPECT_VEC_NEAR(piece->bounds().min, Vec3::Zero(), 0.0);
   EXPECT_VEC_NEAR(piece->bounds().max, Vec3::Ones(), 0.0);
@@ -100,7 +100,7 @@ TEST(BuildPiece, InsideOutPieceIsStoredFlipped) {
   EXPECT_TRUE(piece->stats().convex);
   // Every stored triangle and patch face now faces away from the centroid.
   const Vec3 centroid = Vec3::Constant(0.25);
-  const auto outward = [&](const std::vector<Vec3>& p, const Tri& t) {
+  const auto outward = [&](const auto& p, const Tri& t) {
     const Vec3 n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
     return n.dot(p[t[0]] - centroid) > 0.0;
   };
@@ -149,8 +149,7 @@ TEST(BuildPiece, SoupLeavesWithoutVertexFaceListsGiveTheSameFeatures) {
     const detail::ConvexPolytope& leaf = built.patches[t];
     EXPECT_TRUE(leaf.vertex_face_start.empty() && leaf.vertex_faces.empty());
     EXPECT_TRUE(loaded.patches[t].vertex_face_start.empty());
-    detail::ConvexPolytope listed = leaf;
-    listed.finalize();
+    const detail::ConvexPolytope listed = detail::ConvexPolytope::build(leaf.parts());
     ASSERT_EQ(listed.vertex_face_start.size(), 4u);
     const double tolerance = detail::featureTolerance(leaf);
     for (int k = 0; k < 30; ++k) {

@@ -27,8 +27,8 @@ std::set<int> originals(const ConvexPolytope& hull) {
 /// Every directed edge once with its reverse; every point inside; hill climbing
 /// from any start gives the brute-force support value.
 void expectValidHull(const ConvexPolytope& hull, const std::vector<Vec3>& points, test::Rng& rng) {
-  EXPECT_TRUE(test::eachEdgeOnceEachWay(hull.faces));
-  const double size = (hull.bounds.max - hull.bounds.min).norm();
+  EXPECT_TRUE(test::eachEdgeOnceEachWay({hull.faces.begin(), hull.faces.end()}));
+  const double size = (hull.bounds().max - hull.bounds().min).norm();
   for (const Vec3& p : points) EXPECT_TRUE(test::pointInConvexPolytope(hull, p, 1e-12 * size));
   for (std::size_t i = 0; i < hull.vertices.size(); ++i)
     EXPECT_EQ(hull.vertices[i], points[hull.original[i]]);

@@ -42,12 +42,12 @@ TEST(Epa, TouchingFacesGiveZeroDepthNeverNan) {
 }
 
 TEST(Epa, CoplanarTrianglesAreTouching) {
-  ConvexPolytope t;
-  t.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
-  t.original = {0, 1, 2};
-  t.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
-  t.face_source = {0, 0};
-  t.finalize();
+  PolytopeParts parts;
+  parts.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  parts.original = {0, 1, 2};
+  parts.faces = {Tri(0, 1, 2), Tri(0, 2, 1)};
+  parts.face_source = {0, 0};
+  const ConvexPolytope t = ConvexPolytope::build(parts);
   const EpaResult r = penetrationDepth(t, translation(Vec3(0.2, 0.2, 0)), t, Rigid());
   EXPECT_EQ(r.status, EpaStatus::Touching);
   EXPECT_EQ(r.depth, 0.0);

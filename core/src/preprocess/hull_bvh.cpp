@@ -141,7 +141,10 @@ class Builder {
       centres_.push_back(leaves_[i].center);
     }
     bvh_.nodes.reserve(2 * leaves_.size() - 1);
-    slots_.resize(leaves_.size() - 1);
+    if (sparse())
+      slots_.resize(leaves_.size() - 1);
+    else
+      bvh_.hulls.resize(leaves_.size() - 1);
     inner_total_ = n - 1;
     split(0, n, 0);
     // The split's arrays are done with: freed before the hulls, whose last levels
@@ -149,7 +152,7 @@ class Builder {
     std::vector<int>().swap(order_);
     std::vector<Vec3>().swap(centres_);
     buildHulls();
-    collectHulls();
+    if (sparse()) collectHulls();
     finishHullBvh(leaves_, bvh_);
     return std::move(bvh_);
   }
@@ -210,7 +213,11 @@ class Builder {
       if (keepsHullAt(depth, levels_kept_)) {
         std::unique_ptr<ConvexPolytope> hull = hullOf(index, keyed, stack, work);
         if (hull) releaseUnread(*hull);
-        slots_[bvh_.nodes[index].polytope] = std::move(hull);
+        const int slot = bvh_.nodes[index].polytope;
+        if (sparse())
+          slots_[slot] = std::move(hull);
+        else
+          bvh_.hulls[slot] = std::move(*hull);  // every node keeps one
       }
       ++inner_done_;
       if (report) reportProgress(false);
@@ -218,6 +225,7 @@ class Builder {
   }
 
   /// The slots' hulls into bvh_.hulls in node order; inner nodes without one get -1.
+  /// Their arrays move; each slot's object is freed as it moves.
   void collectHulls() {
     std::size_t kept = 0;
     for (const auto& slot : slots_) kept += slot ? 1 : 0;
@@ -232,10 +240,16 @@ class Builder {
     std::vector<std::unique_ptr<ConvexPolytope>>().swap(slots_);
   }
 
+  /// Whether some inner nodes may keep no hull. Their hulls then go to slots of
+  /// their own and are gathered at the end: an array of n - 1 polytopes would cost
+  /// a polytope object per inner node. Otherwise bvh_.hulls is that array.
+  bool sparse() const { return levels_kept_ != HullLevels::Every; }
+
   /// The polytope of `node` while building: a leaf's, or its slot's (null if none).
   const ConvexPolytope* polytopeOf(int node) const {
     const HullBvhNode& n = bvh_.nodes[node];
-    return n.leaf() ? &leaves_[n.polytope] : slots_[n.polytope].get();
+    if (n.leaf()) return &leaves_[n.polytope];
+    return sparse() ? slots_[n.polytope].get() : &bvh_.hulls[n.polytope];
   }
 
   struct Keyed {

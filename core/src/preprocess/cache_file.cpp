@@ -382,15 +382,24 @@ void buildAndCheck(const PieceCacheRecords& records, ModelKind kind, const MeshD
   for (std::thread& t : pool) t.join();
 }
 
-/// Every inner node's box contains its children's (to rounding of the hull build):
-/// a hierarchy that culls by a smaller hull would miss contacts.
+/// Every inner hull's box contains the boxes of the polytopes nearest below it (to
+/// rounding of the hull build): a hierarchy that culls by a smaller hull would miss
+/// contacts. A node without hull is bounded by a sphere of those polytopes' points.
 bool innerHullsContainChildren(const std::vector<ConvexPolytope>& leaves, const HullBvh& bvh,
                                double slack) {
+  std::vector<int> stack;
   for (const HullBvhNode& node : bvh.nodes) {
-    if (node.leaf()) continue;
+    if (node.leaf() || !node.hasPolytope()) continue;
     const Aabb box = bvh.hulls[static_cast<std::size_t>(node.polytope)].bounds();
-    for (const int child : {node.left, node.right}) {
-      const Aabb inner = bvh.polytope(leaves, child).bounds();
+    stack.assign({node.left, node.right});
+    while (!stack.empty()) {
+      const HullBvhNode& child = bvh.nodes[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+      if (!child.hasPolytope()) {
+        stack.insert(stack.end(), {child.left, child.right});
+        continue;
+      }
+      const Aabb inner = bvh.polytope(leaves, static_cast<int>(&child - bvh.nodes.data())).bounds();
       if ((inner.min.array() < box.min.array() - slack).any() ||
           (inner.max.array() > box.max.array() + slack).any())
         return false;

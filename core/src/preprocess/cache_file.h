@@ -15,7 +15,7 @@ namespace sc::detail {
 
 /// Format version; bump it whenever the layout or the preprocessing changes, so
 /// files written by other versions are rebuilt.
-inline constexpr std::uint32_t kPieceCacheVersion = 2;
+inline constexpr std::uint32_t kPieceCacheVersion = 3;
 
 /// FNV-1a 64 of `size` bytes, continuing from `hash` (start: kFnvOffset).
 inline constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;

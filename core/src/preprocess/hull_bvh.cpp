@@ -3,11 +3,13 @@
 //  1. top-down: split the leaves at the median of their centres along the principal
 //     axis of those centres (largest eigenvector of their covariance), so the tree is
 //     balanced (depth ceil(log2 n)) whatever the shape;
-//  2. bottom-up: an inner node's polytope is the hull of its children's vertices.
-//     Up to kPointSetLimit distinct points are kept as a bare point set (the same
-//     hull; GJK scans it), larger sets go through our Quickhull (quick_hull.h),
-//     qhull where that declines, and a set qhull finds flat is reduced to its 2-D
-//     hull in its plane.
+//  2. bottom-up: an inner node's polytope is the hull of its descendants' points
+//     (its children's polytopes, or theirs below a child without one), built by our
+//     Quickhull (quick_hull.h), qhull where that declines, and a set qhull finds
+//     flat is reduced to its 2-D hull in its plane. Up to kFewPoints points are
+//     kept as a bare point set (the same hull; GJK scans it). A soup's nodes keep
+//     no polytope at odd depths nor over so few points (HullLevels): on a curved
+//     surface each depth's hulls hold about half of all the vertices again.
 // Departure from SWIFT++'s bottom-up merging: the top-down median split costs
 // O(n log n) and never degenerates; hulls are not simplified, so they are exact.
 #include "preprocess/hull_bvh.h"
@@ -16,7 +18,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstddef>
+#include <memory>
 #include <thread>
 #include <utility>
 
@@ -26,8 +30,23 @@
 namespace sc::detail {
 namespace {
 
-/// Inner nodes with at most this many distinct points get no hull.
-constexpr int kPointSetLimit = 24;
+/// Inner nodes with at most this many distinct points keep a bare point set (the
+/// same hull, without faces; GJK scans it) or, with HullLevels::Alternate, nothing.
+constexpr int kFewPoints = 24;
+
+/// Whether inner nodes at `depth` (root 0) may keep a hull. A node without one
+/// costs the queries a sphere bound where GJK on its hull would have pruned: GJK
+/// runs on the depth below instead.
+bool keepsHullAt(int depth, HullLevels levels) {
+  return levels == HullLevels::Every || depth % 2 == 0;
+}
+
+/// Whether a node over `points` distinct points keeps a polytope. A soup's point
+/// sets took 196 bytes per triangle (and a polytope object per node) for GJK bounds
+/// barely tighter than the node's sphere over so few points.
+bool keepsHullOf(std::size_t points, HullLevels levels) {
+  return levels == HullLevels::Every || points > static_cast<std::size_t>(kFewPoints);
+}
 
 /// Unit eigenvectors of the covariance of `points[ids]`, largest eigenvalue last.
 Mat3 principalAxes(const std::vector<Vec3>& points, const int* ids, int count) {
@@ -97,8 +116,12 @@ constexpr int kMinNodesPerThread = 64;
 
 class Builder {
  public:
-  Builder(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress, int threads)
-      : leaves_(leaves), progress_(progress), threads_(std::max(1, threads)) {}
+  Builder(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress, int threads,
+          HullLevels levels)
+      : leaves_(leaves),
+        progress_(progress),
+        threads_(std::max(1, threads)),
+        levels_kept_(levels) {}
 
   HullBvh run() {
     const int n = static_cast<int>(leaves_.size());
@@ -110,7 +133,10 @@ class Builder {
       centres_.push_back(leaves_[i].center);
     }
     bvh_.nodes.reserve(2 * leaves_.size() - 1);
-    bvh_.hulls.resize(leaves_.size() - 1);
+    if (sparse())
+      slots_.resize(leaves_.size() - 1);
+    else
+      bvh_.hulls.resize(leaves_.size() - 1);
     inner_total_ = n - 1;
     split(0, n, 0);
     // The split's arrays are done with: freed before the hulls, whose last levels
@@ -118,13 +144,14 @@ class Builder {
     std::vector<int>().swap(order_);
     std::vector<Vec3>().swap(centres_);
     buildHulls();
+    if (sparse()) collectHulls();
     finishHullBvh(leaves_, bvh_);
     return std::move(bvh_);
   }
 
  private:
-  /// Top-down: the nodes in pre-order, hull indices in post-order, inner nodes
-  /// listed by depth for the bottom-up pass.
+  /// Top-down: the nodes in pre-order, slots in post-order, inner nodes listed by
+  /// depth for the bottom-up pass.
   int split(int begin, int end, int depth) {
     const int index = static_cast<int>(bvh_.nodes.size());
     bvh_.nodes.emplace_back();
@@ -143,7 +170,7 @@ class Builder {
     const int right = split(mid, end, depth + 1);
     bvh_.nodes[index].left = left;
     bvh_.nodes[index].right = right;
-    bvh_.nodes[index].polytope = next_hull_++;
+    bvh_.nodes[index].polytope = next_slot_++;
     if (static_cast<int>(levels_.size()) <= depth) levels_.resize(depth + 1);
     levels_[depth].push_back(index);
     return index;
@@ -152,15 +179,16 @@ class Builder {
   /// Bottom-up, one depth at a time: the hulls of one depth depend only on deeper
   /// ones, and each goes to its own slot, so threads do not change the result.
   void buildHulls() {
-    for (auto level = levels_.rbegin(); level != levels_.rend(); ++level) {
-      const std::vector<int>& nodes = *level;
+    for (int depth = static_cast<int>(levels_.size()) - 1; depth >= 0; --depth) {
+      const std::vector<int>& nodes = levels_[depth];
       const int count = static_cast<int>(nodes.size());
       const int threads = std::min(threads_, std::max(1, count / kMinNodesPerThread));
       std::vector<std::thread> helpers;
       for (int i = 1; i < threads; ++i) {
-        helpers.emplace_back([this, &nodes, i, threads] { buildNodes(nodes, i, threads, false); });
+        helpers.emplace_back(
+            [this, &nodes, i, threads, depth] { buildNodes(nodes, depth, i, threads, false); });
       }
-      buildNodes(nodes, 0, threads, true);
+      buildNodes(nodes, depth, 0, threads, true);
       for (std::thread& helper : helpers) helper.join();
       reportProgress(true);
     }
@@ -168,21 +196,52 @@ class Builder {
 
   /// Hulls of nodes[first], nodes[first + stride], ...; only the calling thread
   /// (`report`) reports progress.
-  void buildNodes(const std::vector<int>& nodes, int first, int stride, bool report) {
+  void buildNodes(const std::vector<int>& nodes, int depth, int first, int stride, bool report) {
     std::vector<Keyed> keyed;
+    std::vector<int> stack;
     PolytopeParts parts;  // reused: its arrays keep their capacity
     QuickHullWorkspace work;
     for (std::size_t k = first; k < nodes.size(); k += stride) {
-      const HullBvhNode& node = bvh_.nodes[nodes[k]];
-      bvh_.hulls[node.polytope] = hullOf(node.left, node.right, keyed, parts, work);
+      const int index = nodes[k];
+      if (keepsHullAt(depth, levels_kept_)) {
+        std::unique_ptr<ConvexPolytope> hull = hullOf(index, keyed, stack, parts, work);
+        const int slot = bvh_.nodes[index].polytope;
+        if (sparse())
+          slots_[slot] = std::move(hull);
+        else
+          bvh_.hulls[slot] = std::move(*hull);  // every node keeps one
+      }
       ++inner_done_;
       if (report) reportProgress(false);
     }
   }
 
-  const ConvexPolytope& polytopeOf(int node) const {
+  /// The slots' hulls into bvh_.hulls in node order; inner nodes without one get -1.
+  /// Their arrays move; each slot's object is freed as it moves.
+  void collectHulls() {
+    std::size_t kept = 0;
+    for (const auto& slot : slots_) kept += slot ? 1 : 0;
+    bvh_.hulls.reserve(kept);
+    for (HullBvhNode& node : bvh_.nodes) {
+      if (node.leaf()) continue;
+      std::unique_ptr<ConvexPolytope>& slot = slots_[node.polytope];
+      node.polytope = slot ? static_cast<int>(bvh_.hulls.size()) : -1;
+      if (slot) bvh_.hulls.push_back(std::move(*slot));
+      slot.reset();
+    }
+    std::vector<std::unique_ptr<ConvexPolytope>>().swap(slots_);
+  }
+
+  /// Whether some inner nodes may keep no hull. Their hulls then go to slots of
+  /// their own and are gathered at the end: an array of n - 1 polytopes would cost
+  /// a polytope object per inner node. Otherwise bvh_.hulls is that array.
+  bool sparse() const { return levels_kept_ != HullLevels::Every; }
+
+  /// The polytope of `node` while building: a leaf's, or its slot's (null if none).
+  const ConvexPolytope* polytopeOf(int node) const {
     const HullBvhNode& n = bvh_.nodes[node];
-    return n.leaf() ? leaves_[n.polytope] : bvh_.hulls[n.polytope];
+    if (n.leaf()) return &leaves_[n.polytope];
+    return sparse() ? slots_[n.polytope].get() : &bvh_.hulls[n.polytope];
   }
 
   struct Keyed {
@@ -190,15 +249,26 @@ class Builder {
     const Vec3* point;
   };
 
-  /// Hull of the children's vertices, each input vertex once.
-  ConvexPolytope hullOf(int left, int right, std::vector<Keyed>& keyed, PolytopeParts& parts,
-                        QuickHullWorkspace& work) const {
+  /// Hull of the node's descendants' vertices, each input vertex once: its
+  /// children's polytopes, or those below a child without one. Null when the node
+  /// keeps none.
+  std::unique_ptr<ConvexPolytope> hullOf(int index, std::vector<Keyed>& keyed,
+                                         std::vector<int>& stack, PolytopeParts& parts,
+                                         QuickHullWorkspace& work) const {
     keyed.clear();
-    for (const int child : {left, right}) {
-      const ConvexPolytope& p = polytopeOf(child);
-      for (std::size_t i = 0; i < p.vertices.size(); ++i) {
-        const int id = i < p.original.size() ? p.original[i] : -1;
-        keyed.push_back({id, &p.vertices[i]});
+    stack.assign({bvh_.nodes[index].right, bvh_.nodes[index].left});
+    while (!stack.empty()) {
+      const int node = stack.back();
+      stack.pop_back();
+      const ConvexPolytope* p = polytopeOf(node);
+      if (p == nullptr) {
+        stack.push_back(bvh_.nodes[node].right);
+        stack.push_back(bvh_.nodes[node].left);
+        continue;
+      }
+      for (std::size_t i = 0; i < p->vertices.size(); ++i) {
+        const int id = i < p->original.size() ? p->original[i] : -1;
+        keyed.push_back({id, &p->vertices[i]});
       }
     }
     // Shared input vertices once: same original index and the same point.
@@ -215,12 +285,16 @@ class Builder {
       points.push_back(*keyed[k].point);
       original.push_back(keyed[k].original);
     }
-    if (static_cast<int>(points.size()) <= kPointSetLimit) return pointSet(parts);
-    ConvexPolytope quick;
-    if (quickHull(points, original, work, quick, PolytopeKeep::Support)) return quick;
+    if (!keepsHullOf(points.size(), levels_kept_)) return nullptr;
+    auto out = std::make_unique<ConvexPolytope>();
+    if (points.size() <= static_cast<std::size_t>(kFewPoints)) {
+      *out = pointSet(parts);
+      return out;
+    }
+    if (quickHull(points, original, work, *out, PolytopeKeep::Support)) return out;
     Result<ConvexPolytope> hull = convexHull(points, original);
-    if (hull.ok()) return hull.value().reduced(PolytopeKeep::Support);
-    return flatHull(points, original);
+    *out = hull.ok() ? hull.value().reduced(PolytopeKeep::Support) : flatHull(points, original);
+    return out;
   }
 
   void reportProgress(bool level_done) {
@@ -237,11 +311,14 @@ class Builder {
   const std::vector<ConvexPolytope>& leaves_;
   const ProgressCallback& progress_;
   const int threads_;
+  const HullLevels levels_kept_;
   std::vector<int> order_;
   std::vector<Vec3> centres_;
   std::vector<std::vector<int>> levels_;  ///< inner nodes per depth
+  /// Per inner node (its polytope field while building): its hull, or null.
+  std::vector<std::unique_ptr<ConvexPolytope>> slots_;
   HullBvh bvh_;
-  int next_hull_ = 0;
+  int next_slot_ = 0;
   int inner_total_ = 0;
   std::atomic<int> inner_done_{0};
   double reported_ = 0.0;
@@ -250,20 +327,58 @@ class Builder {
 }  // namespace
 
 HullBvh buildHullBvh(const std::vector<ConvexPolytope>& leaves, const ProgressCallback& progress,
-                     int threads) {
-  return Builder(leaves, progress, threads).run();
+                     int threads, HullLevels levels) {
+  return Builder(leaves, progress, threads, levels).run();
 }
 
-bool finishHullBvh(const std::vector<ConvexPolytope>& leaves, HullBvh& bvh) {
+namespace {
+
+/// The polytopes nearest below inner node `index` (its children, or below a child
+/// without one), each passed to `visit`.
+template <class Visit>
+void forEachPolytopeBelow(const std::vector<ConvexPolytope>& leaves, const HullBvh& bvh, int index,
+                          std::vector<int>& stack, Visit&& visit) {
+  stack.assign({bvh.nodes[index].right, bvh.nodes[index].left});
+  while (!stack.empty()) {
+    const HullBvhNode& node = bvh.nodes[stack.back()];
+    stack.pop_back();
+    if (node.hasPolytope()) {
+      visit(bvh.polytope(leaves, static_cast<int>(&node - bvh.nodes.data())));
+    } else {
+      stack.push_back(node.right);
+      stack.push_back(node.left);
+    }
+  }
+}
+
+/// The bounding sphere a hull of the node's descendants would get (finalize():
+/// centre of the box, farthest vertex), from the polytopes below it.
+void sphereBelow(const std::vector<ConvexPolytope>& leaves, const HullBvh& bvh, int index,
+                 std::vector<int>& stack, HullBvhNode& out) {
+  Aabb box;
+  forEachPolytopeBelow(leaves, bvh, index, stack,
+                       [&](const ConvexPolytope& p) { box.extend(p.bounds()); });
+  const Vec3 center = 0.5 * (box.min + box.max);
+  double radius2 = 0.0;
+  forEachPolytopeBelow(leaves, bvh, index, stack, [&](const ConvexPolytope& p) {
+    const double reach = (p.center - center).norm() + p.radius;
+    if (reach * reach < radius2 * (1.0 - 1e-12)) return;  // no vertex of p is farther
+    for (const Vec3& v : p.vertices) radius2 = std::max(radius2, (v - center).squaredNorm());
+  });
+  out.center = center;
+  out.radius = std::sqrt(radius2);
+}
+
+/// The tree's structure: a binary tree rooted at 0 reaching every node once, each
+/// leaf index and each hull once. Fills leaf_node and depth; false when invalid.
+bool checkStructure(const HullBvh& bvh, int leaf_count, std::vector<int>& leaf_node, int& depth) {
   const int node_count = static_cast<int>(bvh.nodes.size());
-  const int leaf_count = static_cast<int>(leaves.size());
   const int hull_count = static_cast<int>(bvh.hulls.size());
-  if (leaf_count == 0) return node_count == 0 && hull_count == 0;
-  if (node_count != 2 * leaf_count - 1 || hull_count != leaf_count - 1) return false;
-  std::vector<int> leaf_node(leaves.size(), -1);
+  leaf_node.assign(static_cast<std::size_t>(leaf_count), -1);
   std::vector<char> node_seen(bvh.nodes.size(), 0), hull_seen(bvh.hulls.size(), 0);
   std::vector<std::pair<int, int>> stack = {{0, 0}};  // node, depth
-  int depth = 0;
+  int hulls_seen = 0;
+  depth = 0;
   node_seen[0] = 1;
   while (!stack.empty()) {
     const auto [index, level] = stack.back();
@@ -277,18 +392,42 @@ bool finishHullBvh(const std::vector<ConvexPolytope>& leaves, HullBvh& bvh) {
       leaf_node[node.polytope] = index;
       continue;
     }
-    if (node.polytope < 0 || node.polytope >= hull_count || hull_seen[node.polytope]) return false;
-    hull_seen[node.polytope] = 1;
+    if (node.polytope < -1 || node.polytope >= hull_count) return false;
+    if (node.polytope >= 0) {
+      if (hull_seen[node.polytope]) return false;
+      hull_seen[node.polytope] = 1;
+      ++hulls_seen;
+    }
     for (const int child : {node.left, node.right}) {
       if (child <= 0 || child >= node_count || node_seen[child]) return false;
       node_seen[child] = 1;
       stack.emplace_back(child, level + 1);
     }
   }
-  // With 2n - 1 nodes all reached, the n leaves and n - 1 hulls are each used once.
-  if (std::find(node_seen.begin(), node_seen.end(), 0) != node_seen.end()) return false;
-  for (HullBvhNode& node : bvh.nodes) {
-    const ConvexPolytope& p = node.leaf() ? leaves[node.polytope] : bvh.hulls[node.polytope];
+  // With 2n - 1 nodes all reached, the n leaves are each used once.
+  return hulls_seen == hull_count &&
+         std::find(node_seen.begin(), node_seen.end(), 0) == node_seen.end();
+}
+
+}  // namespace
+
+bool finishHullBvh(const std::vector<ConvexPolytope>& leaves, HullBvh& bvh) {
+  const int node_count = static_cast<int>(bvh.nodes.size());
+  const int leaf_count = static_cast<int>(leaves.size());
+  const int hull_count = static_cast<int>(bvh.hulls.size());
+  if (leaf_count == 0) return node_count == 0 && hull_count == 0;
+  if (node_count != 2 * leaf_count - 1 || hull_count > leaf_count - 1) return false;
+  std::vector<int> leaf_node;
+  int depth = 0;
+  if (!checkStructure(bvh, leaf_count, leaf_node, depth)) return false;
+  std::vector<int> stack;
+  for (int i = 0; i < node_count; ++i) {
+    HullBvhNode& node = bvh.nodes[i];
+    if (!node.hasPolytope()) {
+      sphereBelow(leaves, bvh, i, stack, node);
+      continue;
+    }
+    const ConvexPolytope& p = bvh.polytope(leaves, i);
     node.center = p.center;
     node.radius = p.radius;
   }

@@ -144,8 +144,11 @@ Status preprocess(PieceData& data, const BuildOptions& options) {
   if (cancelled(options)) return cancelledStatus();
   const double from =
       data.kind == ModelKind::ClosedPolyhedron ? kHierarchyStart : kDecompositionStart;
+  const detail::HullLevels levels = data.kind == ModelKind::TriangleSoup
+                                        ? detail::HullLevels::Alternate
+                                        : detail::HullLevels::Every;
   data.hierarchy =
-      detail::buildHullBvh(data.patches, subRange(progress, from, kHierarchyEnd), threads);
+      detail::buildHullBvh(data.patches, subRange(progress, from, kHierarchyEnd), threads, levels);
   data.stats.tree_depth = data.hierarchy.depth;
   // Last chance before the cache file: a cancelled build writes nothing.
   return cancelled(options) ? cancelledStatus() : Status::success();

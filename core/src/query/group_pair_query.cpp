@@ -245,6 +245,7 @@ GjkResult GroupPairQuery::nodeGjkAt(const NodePair& p, const Rigid& o_from_piece
 
 double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance,
                                       double within_distance) {
+  if (!hullsOf(p)) return 0.0;  // the caller's sphere bound stands
   const GjkResult r = nodeGjk(p, max_distance, within_distance);
   return r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound;
 }

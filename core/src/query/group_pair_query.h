@@ -156,8 +156,15 @@ class GroupPairQuery {
   /// Places every target piece in the opponent frame for this query.
   void placeTargets(const Rigid& o_from_t);
   double sphereBound(const NodePair& p) const;
+  /// Both nodes have a polytope (a leaf, or an inner node that keeps its hull), so
+  /// GJK can bound the pair; otherwise its sphere bound is all there is.
+  bool hullsOf(const NodePair& p) const {
+    return t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node].hasPolytope() &&
+           o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node].hasPolytope();
+  }
   /// GJK lower bound of a node pair's distance, exact up to max_distance unless the
-  /// pair is found within `within_distance` first (negative: never).
+  /// pair is found within `within_distance` first (negative: never); 0 for a pair
+  /// without both hulls.
   double nodeLowerBound(const NodePair& p, double max_distance, double within_distance);
   /// GJK on a node pair's hulls (as nodeLowerBound), with its closest points and normal.
   GjkResult nodeGjk(const NodePair& p, double max_distance, double within_distance);

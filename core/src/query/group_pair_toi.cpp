@@ -60,6 +60,7 @@ struct GroupPairQuery::ToiPolicy {
   /// the contact (a jump sideways) prunes what the distance bound alone, assuming the
   /// worst direction, would keep.
   bool planesKeepApart(NodePair& p) {
+    if (!q.hullsOf(p)) return false;  // no hull, no plane: its children may have one
     const GjkResult r = q.nodeGjk(p, reach(), -1.0);
     if (r.status == GjkStatus::BeyondMaxDistance) return true;
     p.bound = std::max(p.bound, r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound);

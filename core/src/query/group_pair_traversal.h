@@ -91,7 +91,10 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
         continue;
       }
     }
-    const bool split_t = on.leaf() || (!tn.leaf() && tn.radius >= on.radius);
+    // A node without hull goes first: only its children can tighten the bound.
+    const bool split_t = tn.hasPolytope() != on.hasPolytope()
+                             ? !tn.hasPolytope()
+                             : on.leaf() || (!tn.leaf() && tn.radius >= on.radius);
     const HullBvhNode& split = split_t ? tn : on;
     for (const int child : {split.left, split.right}) {
       NodePair c = p;

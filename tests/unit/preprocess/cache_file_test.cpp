@@ -222,7 +222,7 @@ TEST(CacheFileChecksum, SeesEveryBitFlipAndWordSwap) {
 // A file of several write chunks (1 MiB each) holds exactly the bytes encoded in
 // memory, checksum included, and loads.
 TEST(CacheFileMesh, FileWrittenInChunksEqualsTheEncodedBytes) {
-  const MeshData soup = test::torusMesh(1.0, 0.3, 60, 40);  // 4,800 triangles
+  const MeshData soup = test::torusMesh(1.0, 0.3, 100, 60);  // 12,000 triangles
   TempFile file("sc_cache_test", "chunks.bvh");
   BuildOptions options;
   options.cache_file = file.path;

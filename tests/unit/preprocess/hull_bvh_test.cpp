@@ -44,7 +44,7 @@ bool contains(const ConvexPolytope& hull, const Vec3& point, double tolerance,
 void expectValidHierarchy(const std::vector<ConvexPolytope>& leaves, const HullBvh& bvh) {
   const int n = static_cast<int>(leaves.size());
   ASSERT_EQ(static_cast<int>(bvh.nodes.size()), 2 * n - 1);
-  ASSERT_EQ(static_cast<int>(bvh.hulls.size()), n - 1);
+  ASSERT_LE(static_cast<int>(bvh.hulls.size()), std::max(0, n - 1));
   ASSERT_EQ(static_cast<int>(bvh.leaf_node.size()), n);
   test::Rng rng(7);
   std::vector<Vec3> directions;
@@ -65,20 +65,27 @@ void expectValidHierarchy(const std::vector<ConvexPolytope>& leaves, const HullB
   // Per node: the points of the leaves below (by recursion from the root).
   std::function<std::vector<Vec3>(int, int)> below = [&](int index, int level) {
     const HullBvhNode& node = bvh.nodes[index];
-    const ConvexPolytope& poly = bvh.polytope(leaves, index);
-    const double size = 1e-12 * (1.0 + poly.radius + poly.center.norm());
     EXPECT_LE(level, bvh.depth);
-    for (const Vec3& v : poly.vertices) EXPECT_LE((v - node.center).norm(), node.radius + size);
-    if (node.leaf()) return std::vector<Vec3>(poly.vertices.begin(), poly.vertices.end());
+    if (node.leaf()) {
+      const ConvexPolytope& leaf = bvh.polytope(leaves, index);
+      const double size = 1e-12 * (1.0 + leaf.radius + leaf.center.norm());
+      for (const Vec3& v : leaf.vertices) EXPECT_LE((v - node.center).norm(), node.radius + size);
+      return std::vector<Vec3>(leaf.vertices.begin(), leaf.vertices.end());
+    }
     std::vector<Vec3> points = below(node.left, level + 1);
     const std::vector<Vec3> right = below(node.right, level + 1);
     points.insert(points.end(), right.begin(), right.end());
-    // Contains its children's vertices...
-    for (const int child : {node.left, node.right}) {
-      for (const Vec3& v : bvh.polytope(leaves, child).vertices)
-        EXPECT_TRUE(contains(poly, v, 1e-9 * (1.0 + poly.radius), directions))
-            << "node " << index << " misses a vertex of child " << child;
-    }
+    // Its sphere holds every point below, hull or not...
+    const double size = 1e-12 * (1.0 + node.radius + node.center.norm());
+    for (const Vec3& v : points) EXPECT_LE((v - node.center).norm(), node.radius + size);
+    if (!node.hasPolytope()) return points;
+    const ConvexPolytope& poly = bvh.polytope(leaves, index);
+    EXPECT_EQ(node.center, poly.center);
+    EXPECT_EQ(node.radius, poly.radius);
+    // ...its hull contains them too...
+    for (const Vec3& v : points)
+      EXPECT_TRUE(contains(poly, v, 1e-9 * (1.0 + poly.radius), directions))
+          << "node " << index << " misses a point below it";
     // ...and no more: each of its vertices is a vertex of a leaf below.
     for (const Vec3& v : poly.vertices)
       EXPECT_NE(std::find(points.begin(), points.end(), v), points.end()) << "node " << index;
@@ -118,6 +125,7 @@ TEST(HullBvh, RandomLeavesGiveABalancedTreeOfContainingHulls) {
       const Vec3 d = test::randomDirection(rng);
       double leaf_max = -kInfinity;
       for (const ConvexPolytope& l : leaves) leaf_max = std::max(leaf_max, supportValue(l, d));
+      if (!bvh.nodes[0].hasPolytope()) break;  // few points: the sphere was checked
       EXPECT_NEAR(supportValue(bvh.hulls[bvh.nodes[0].polytope], d), leaf_max, 1e-12 * 40);
     }
   }
@@ -238,6 +246,51 @@ TEST(HullBvh, RandomSoupLeavesAreItsTriangles) {
   expectValidHierarchy(data.patches, data.hierarchy);
 }
 
+/// Per node: the input vertices (original indices) below it; checks which inner
+/// nodes keep a polytope: all of them, or when `alternate` those of more than 24
+/// distinct points at even depths. Returns the hull-less inner nodes above 24
+/// points; `small_without` the others.
+int expectHullPolicy(const std::vector<ConvexPolytope>& leaves, const HullBvh& bvh, bool alternate,
+                     int& small_without) {
+  int large_without = 0;
+  small_without = 0;
+  std::function<std::set<int>(int, int)> below = [&](int index, int depth) {
+    const HullBvhNode& node = bvh.nodes[index];
+    if (node.leaf()) {
+      const ConvexPolytope& leaf = leaves[node.polytope];
+      return std::set<int>(leaf.original.begin(), leaf.original.end());
+    }
+    std::set<int> ids = below(node.left, depth + 1);
+    const std::set<int> right = below(node.right, depth + 1);
+    ids.insert(right.begin(), right.end());
+    const bool large = ids.size() > 24u;
+    EXPECT_EQ(node.hasPolytope(), !alternate || (large && depth % 2 == 0))
+        << "node " << index << " at depth " << depth << " over " << ids.size() << " points";
+    if (!node.hasPolytope()) ++(large ? large_without : small_without);
+    return ids;
+  };
+  below(0, 0);
+  return large_without;
+}
+
+TEST(HullBvh, SoupsKeepHullsOnEveryOtherDepthAndNoneOnFewPointsClosedPiecesEverywhere) {
+  const Result<PiecePtr> soup =
+      buildPiece(ModelKind::TriangleSoup, test::torusMesh(1.0, 0.3, 32, 16));
+  ASSERT_TRUE(soup.ok());
+  const PieceData& s = soup.value()->internals();
+  expectValidHierarchy(s.patches, s.hierarchy);
+  int small = 0;
+  EXPECT_GT(expectHullPolicy(s.patches, s.hierarchy, true, small), 0);
+  EXPECT_GT(small, 0);
+  MeshData elephant;
+  ASSERT_NO_FATAL_FAILURE(elephant = test::loadTestMesh("elephant"));
+  const Result<PiecePtr> closed = buildPiece(ModelKind::ClosedPolyhedron, elephant);
+  ASSERT_TRUE(closed.ok());
+  const PieceData& c = closed.value()->internals();
+  EXPECT_EQ(expectHullPolicy(c.patches, c.hierarchy, false, small), 0);
+  EXPECT_EQ(small, 0);
+}
+
 TEST(HullBvh, ConvexPieceNeedsNoTree) {
   const Result<PiecePtr> piece =
       buildPiece(ModelKind::ClosedPolyhedron, test::boxMesh(Vec3(1.0, 2.0, 3.0)));
@@ -278,7 +331,24 @@ TEST(HullBvh, FinishRejectsBrokenStructures) {
   EXPECT_TRUE(broken([](HullBvh& b) { b.nodes[0].left = 0; }));  // a cycle
   EXPECT_TRUE(broken([](HullBvh& b) { b.nodes[0].right = b.nodes[0].left; }));
   EXPECT_TRUE(broken([](HullBvh& b) { b.nodes[0].left = 1000; }));
-  EXPECT_TRUE(broken([](HullBvh& b) { b.nodes[0].polytope = -1; }));
+  EXPECT_TRUE(broken([](HullBvh& b) { b.nodes[0].polytope = -1; }));  // a hull unused
+  EXPECT_TRUE(broken([](HullBvh& b) { b.nodes[0].polytope = -2; }));
+  EXPECT_TRUE(broken([](HullBvh& b) {  // a hull named twice
+    for (HullBvhNode& n : b.nodes) {
+      if (&n != &b.nodes[0] && n.hasPolytope() && !n.leaf()) n.polytope = b.nodes[0].polytope;
+    }
+  }));
+  // A node without hull, its hull gone: valid, bounded by its sphere.
+  HullBvh fewer = good;
+  ASSERT_TRUE(fewer.nodes[0].hasPolytope());
+  fewer.hulls.erase(fewer.hulls.begin() + fewer.nodes[0].polytope);
+  for (HullBvhNode& n : fewer.nodes)
+    if (!n.leaf() && n.polytope > good.nodes[0].polytope) --n.polytope;
+  fewer.nodes[0].polytope = -1;
+  ASSERT_TRUE(finishHullBvh(leaves, fewer));
+  EXPECT_EQ(fewer.nodes[0].center, copy.nodes[0].center);
+  EXPECT_NEAR(fewer.nodes[0].radius, copy.nodes[0].radius, 1e-15 * copy.nodes[0].radius);
+  expectValidHierarchy(leaves, fewer);
   EXPECT_TRUE(broken([](HullBvh& b) {
     // Two leaves naming the same patch.
     int first = -1;

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/brute_force.h"
 #include "support/meshes.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
@@ -777,6 +778,70 @@ MeshData gridSoup(int n, double cell, double bump) {
 // motion, and when it is due unfinished, it runs only as far as the pose needs: no
 // call does half a rebuild's work (one did 61% of one when due rebuilds ran to their
 // end at a pace set by the last rebuild alone).
+/// Inner nodes of the model's pieces that keep no hull.
+int hullLessNodes(const Model& model) {
+  int count = 0;
+  for (const PiecePtr& piece : model.pieces())
+    for (const HullBvhNode& n : piece->internals().hierarchy.nodes)
+      count += !n.leaf() && !n.hasPolytope() ? 1 : 0;
+  return count;
+}
+
+// A soup's hierarchy, in which some inner nodes keep no hull (odd depths, nodes of
+// few points; their spheres bound them), answers as every leaf pair does against a
+// closed mesh and a soup: distance, contacts within a gap and intersection; soup
+// against soup as every triangle pair.
+TEST(GroupPairQueryHullLess, DistancesEqualBruteForceOnASoupAndAClosedMesh) {
+  MeshData elephant;
+  ASSERT_NO_FATAL_FAILURE(elephant = test::loadTestMesh("elephant"));
+  const MeshData torus = test::torusMesh(0.25, 0.08, 24, 12);
+  const ModelPtr closed = modelOf(ModelKind::ClosedPolyhedron, {elephant});
+  const ModelPtr soup = modelOf(ModelKind::TriangleSoup, {torus});
+  const ModelPtr ring = modelOf(ModelKind::ClosedPolyhedron, {torus});
+  ASSERT_TRUE(closed && soup && ring);
+  EXPECT_GT(hullLessNodes(*soup), 100);
+  const std::pair<const Model*, const Model*> pairs[] = {
+      {soup.get(), closed.get()}, {ring.get(), soup.get()}, {soup.get(), soup.get()}};
+  test::Rng rng(0x41F);
+  int touching = 0, apart = 0;
+  for (const auto& [target, opponent] : pairs) {
+    const Part t_part{target, Rigid(), 1}, o_part{opponent, Rigid(), 2};
+    const GroupView t_view{&t_part, 1, Placement()}, o_view{&o_part, 1, Placement()};
+    GroupPairQuery q;
+    q.bind(t_view, o_view);
+    const BruteForce brute(q);
+    const Vec3 centre = 0.5 * (opponent->bounds().min + opponent->bounds().max);
+    for (int c = 0; c < kDistancePoses; ++c) {
+      SCOPED_TRACE(c);
+      const Rigid pose{test::randomRotation(rng).toRotationMatrix(),
+                       centre + 0.5 * uniformInCube(rng)};
+      const std::vector<double> gaps = brute.gaps(pose);
+      const double expected = *std::min_element(gaps.begin(), gaps.end());
+      LeafContact best;
+      ASSERT_TRUE(q.distance(pose, kInfinity, best));
+      EXPECT_NEAR(best.gap, expected, 1e-12 * (1.0 + expected));
+      EXPECT_EQ(q.intersects(pose), expected == 0.0);
+      if (target == opponent) {  // soup against soup: every triangle pair
+        const double surface = test::meshSurfaceDistance(torus, pose, torus, Rigid()).distance;
+        EXPECT_NEAR(best.gap, surface, 1e-12 * (1.0 + surface));
+      }
+      const double threshold = expected + 0.02;
+      std::vector<LeafContact> contacts;
+      q.contacts(pose, threshold, contacts);
+      std::set<std::pair<int, int>> got, want;
+      for (const LeafContact& lc : contacts) got.insert({lc.t_leaf, lc.o_leaf});
+      for (std::size_t i = 0; i < brute.t.size(); ++i)
+        for (std::size_t j = 0; j < brute.o.size(); ++j)
+          if (gaps[i * brute.o.size() + j] <= threshold)
+            want.insert({static_cast<int>(i), static_cast<int>(j)});
+      EXPECT_EQ(got, want);
+      expected > 0.0 ? ++apart : ++touching;
+    }
+  }
+  EXPECT_GE(apart, kDistancePoses / 2);
+  EXPECT_GE(touching, kDistancePoses / 2);
+}
+
 TEST(GroupPairQueryPacing, ALandingPlateSpreadsItsRebuildsOverTheCalls) {
   const ModelPtr floor = modelOf(ModelKind::TriangleSoup, {gridSoup(40, 0.025, 0.006)});
   const ModelPtr plate = modelOf(ModelKind::TriangleSoup, {gridSoup(16, 0.025, 0.0)});

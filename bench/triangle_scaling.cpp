@@ -103,6 +103,7 @@ sc::MeshData icosahedron() {
 
 struct Row {
   std::string series, model;
+  sc::ModelKind kind = sc::ModelKind::ClosedPolyhedron;
   int triangles = 0;
   double preprocess_s = 0, fcl_build_s = 0;
   double ours_distance_us = 0, ours_distance_p99_us = 0, fcl_distance_us = 0,
@@ -116,15 +117,14 @@ class Bench {
  public:
   Bench(const sc::MeshData& mesh, Row& row) : mesh_(mesh), row_(row) {
     const auto t0 = Clock::now();
-    sc::Result<sc::PiecePtr> piece = sc::buildPiece(sc::ModelKind::ClosedPolyhedron, mesh_);
+    sc::Result<sc::PiecePtr> piece = sc::buildPiece(row_.kind, mesh_);
     row_.preprocess_s = secondsSince(t0);
     if (!piece.hasValue()) {
       std::fprintf(stderr, "triangle_scaling: %s: %s\n", row_.model.c_str(),
                    piece.status().message().c_str());
       return;
     }
-    model_ = std::make_shared<const sc::Model>(sc::ModelKind::ClosedPolyhedron,
-                                               std::vector<sc::PiecePtr>{piece.value()});
+    model_ = std::make_shared<const sc::Model>(row_.kind, std::vector<sc::PiecePtr>{piece.value()});
     part_t_ = sc::Part{model_.get(), sc::Rigid(), 0};
     part_o_ = sc::Part{model_.get(), sc::Rigid(), 1};
 #if SC_BENCH_HAVE_FCL
@@ -490,10 +490,12 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
 /// The models of each series, up to `max_triangles`, in increasing size.
 std::vector<std::pair<Row, sc::MeshData>> models(int max_triangles) {
   std::vector<std::pair<Row, sc::MeshData>> out;
-  auto add = [&](const std::string& series, const std::string& name, const sc::MeshData& m) {
+  auto add = [&](const std::string& series, const std::string& name, const sc::MeshData& m,
+                 sc::ModelKind kind = sc::ModelKind::ClosedPolyhedron) {
     if (m.triangles.empty() || static_cast<int>(m.triangles.size()) > max_triangles) return;
     Row r;
     r.series = series;
+    r.kind = kind;
     r.model = name;
     r.triangles = static_cast<int>(m.triangles.size());
     out.emplace_back(r, sc::support::fitToSize(m, 1.0));
@@ -506,9 +508,14 @@ std::vector<std::pair<Row, sc::MeshData>> models(int max_triangles) {
   for (const char* name : {"cow", "femur", "camel", "armadillo", "bunny00"})
     add("CGAL models", name, sc_bench::loadOff(name));
   // Tori: long convex bands, which the decomposition splits into capped patches.
-  for (const int around : {200, 400})
-    add("torus (non-convex)", "torus-" + std::to_string(around * around / 1000) + "k",
-        sc::samples::torusMesh(1.0, 0.3, around, around / 2));
+  // The same tori as soups: a leaf per triangle under a hierarchy that keeps fewer
+  // inner hulls (memory), which the queries pay for.
+  for (const int around : {200, 400}) {
+    const std::string size = std::to_string(around * around / 1000) + "k";
+    const sc::MeshData torus = sc::samples::torusMesh(1.0, 0.3, around, around / 2);
+    add("torus (non-convex)", "torus-" + size, torus);
+    add("torus (soup)", "torus-soup-" + size, torus, sc::ModelKind::TriangleSoup);
+  }
   sc::MeshData knot = sc_bench::loadOff("knot1");
   for (int level = 0; level <= 3 && !knot.triangles.empty(); ++level) {
     add("knot1 subdivided (non-convex)", "knot1-" + std::to_string(level), knot);

@@ -8,8 +8,8 @@
 //     Quickhull (quick_hull.h), qhull where that declines, and a set qhull finds
 //     flat is reduced to its 2-D hull in its plane. Up to kFewPoints points are
 //     kept as a bare point set (the same hull; GJK scans it). A soup's nodes keep
-//     no polytope at odd depths nor over so few points (HullLevels): on a curved
-//     surface each depth's hulls hold about half of all the vertices again.
+//     no polytope at odd depths (HullLevels): on a curved surface each depth's
+//     hulls hold about half of all the vertices again.
 // Departure from SWIFT++'s bottom-up merging: the top-down median split costs
 // O(n log n) and never degenerates; hulls are not simplified, so they are exact.
 #include "preprocess/hull_bvh.h"
@@ -31,7 +31,7 @@ namespace sc::detail {
 namespace {
 
 /// Inner nodes with at most this many distinct points keep a bare point set (the
-/// same hull, without faces; GJK scans it) or, with HullLevels::Alternate, nothing.
+/// same hull, without faces; GJK scans it).
 constexpr int kFewPoints = 24;
 
 /// Whether inner nodes at `depth` (root 0) may keep a hull. A node without one
@@ -39,13 +39,6 @@ constexpr int kFewPoints = 24;
 /// runs on the depth below instead.
 bool keepsHullAt(int depth, HullLevels levels) {
   return levels == HullLevels::Every || depth % 2 == 0;
-}
-
-/// Whether a node over `points` distinct points keeps a polytope. A soup's point
-/// sets took 196 bytes per triangle (and a polytope object per node) for GJK bounds
-/// barely tighter than the node's sphere over so few points.
-bool keepsHullOf(std::size_t points, HullLevels levels) {
-  return levels == HullLevels::Every || points > static_cast<std::size_t>(kFewPoints);
 }
 
 /// Unit eigenvectors of the covariance of `points[ids]`, largest eigenvalue last.
@@ -250,8 +243,7 @@ class Builder {
   };
 
   /// Hull of the node's descendants' vertices, each input vertex once: its
-  /// children's polytopes, or those below a child without one. Null when the node
-  /// keeps none.
+  /// children's polytopes, or those below a child without one.
   std::unique_ptr<ConvexPolytope> hullOf(int index, std::vector<Keyed>& keyed,
                                          std::vector<int>& stack, PolytopeParts& parts,
                                          QuickHullWorkspace& work) const {
@@ -285,7 +277,6 @@ class Builder {
       points.push_back(*keyed[k].point);
       original.push_back(keyed[k].original);
     }
-    if (!keepsHullOf(points.size(), levels_kept_)) return nullptr;
     auto out = std::make_unique<ConvexPolytope>();
     if (points.size() <= static_cast<std::size_t>(kFewPoints)) {
       *out = pointSet(parts);

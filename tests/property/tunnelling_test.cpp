@@ -114,16 +114,27 @@ TEST_P(Tunnelling, OneUpdateThroughTheWallReportsPenetration) {
               kCases);
 }
 
+/// A 0.1 cube (part 1) and the wall (part 2), both at the origin of their frames.
+struct BoxAndWall {
+  explicit BoxAndWall(ModelKind kind)
+      : wall_mesh(wallMesh(kind)),
+        body(boxMesh(Vec3(0.05, 0.05, 0.05))),
+        wall_model(modelOf(kind, wall_mesh)),
+        body_model(modelOf(ModelKind::ClosedPolyhedron, body)),
+        wall_part{wall_model.get(), Rigid(), 2},
+        body_part{body_model.get(), Rigid(), 1} {}
+  MeshData wall_mesh, body;
+  ModelPtr wall_model, body_model;
+  Part wall_part, body_part;
+};
+
 /// A fast sequence: steps far larger than the wall's thickness cross it; the depth
 /// stays path-dependent while beyond it and vanishes when the body comes back.
 TEST_P(Tunnelling, FastSequenceStaysOnTheEntrySide) {
   const Wall wall = GetParam();
-  const MeshData wall_mesh = wallMesh(wall.kind);
-  const ModelPtr wall_model = modelOf(wall.kind, wall_mesh);
-  const MeshData body = boxMesh(Vec3(0.05, 0.05, 0.05));
-  const ModelPtr body_model = modelOf(ModelKind::ClosedPolyhedron, body);
-  ASSERT_TRUE(wall_model && body_model);
-  const Part wall_part{wall_model.get(), Rigid(), 2}, body_part{body_model.get(), Rigid(), 1};
+  const BoxAndWall scene(wall.kind);
+  ASSERT_TRUE(scene.wall_model && scene.body_model);
+  const Part &wall_part = scene.wall_part, &body_part = scene.body_part;
   const Placement wall_place;
   SceneSettings settings;
   PairTracker tracker;
@@ -160,12 +171,10 @@ TEST_P(Tunnelling, FastSequenceStaysOnTheEntrySide) {
 /// body), and its sweep from the rest still stops at the wall.
 TEST_P(Tunnelling, FromRestWithinTheToleranceThroughTheWall) {
   const Wall wall = GetParam();
-  const MeshData wall_mesh = wallMesh(wall.kind);
-  const ModelPtr wall_model = modelOf(wall.kind, wall_mesh);
-  const MeshData body = boxMesh(Vec3(0.05, 0.05, 0.05));
-  const ModelPtr body_model = modelOf(ModelKind::ClosedPolyhedron, body);
-  ASSERT_TRUE(wall_model && body_model);
-  const Part wall_part{wall_model.get(), Rigid(), 2}, body_part{body_model.get(), Rigid(), 1};
+  const BoxAndWall scene(wall.kind);
+  ASSERT_TRUE(scene.wall_model && scene.body_model);
+  const Part &wall_part = scene.wall_part, &body_part = scene.body_part;
+  const MeshData &wall_mesh = scene.wall_mesh, &body = scene.body;
   const Placement wall_place;
   const double top = wall.kind == ModelKind::ClosedPolyhedron ? kWallHalfThickness : 0.0;
   for (const RotationMode mode : {RotationMode::Input, RotationMode::None}) {

@@ -17,7 +17,7 @@
 // orbit and the carried tracker is reset() first (the documented teleport), so that
 // its result must equal the fresh one's there, depth included. --teleport-distance=X
 // sets PairSettings::teleport_distance (default +inf: every jump is a path).
-// --callgrind-updates: under `valgrind --tool=callgrind --collect-atstart=no`, the PD
+// --callgrind-updates: under `valgrind --tool=callgrind --collect-atstart=no`, each
 // case's first run collects only the carried tracker's updates and dumps the count
 // after each one (one file per update: bench/callgrind_updates.py reads them), so
 // which updates are slow is known independently of the machine's load.
@@ -60,7 +60,7 @@ constexpr double kAcceptanceJump = 0.05;  // the case the target is asserted on
 constexpr int kJumpEvery = 200;
 constexpr double kStepAngle = 2e-4;  // radians per step of the orbit and of the body
 int g_runs = 3;  // --runs=N: more runs, less of the machine's load in each step's least time
-bool g_callgrind_updates = false;  // --callgrind-updates: one callgrind dump per PD update
+bool g_callgrind_updates = false;  // --callgrind-updates: one callgrind dump per update
 constexpr double kRatio = 1.2, kSlackUs = 20.0;
 constexpr double kPdP99Us = 200.0;  // PD update target (issue 19.3)
 
@@ -182,6 +182,23 @@ bool differ(const sc::DirectedResult& w, const sc::DirectedResult& c, bool penet
          (w.tpdv - c.tpdv).norm() > 1e-9 * scale;
 }
 
+/// One update of the carried tracker, counted alone by callgrind when asked to.
+Sample countedUpdate(const Pair& pair, sc::PairTracker& tracker, const sc::Rigid& pose,
+                     sc::DirectedResult& r, bool counted, bool teleport = false) {
+#ifdef SC_HAVE_CALLGRIND
+  if (counted) CALLGRIND_TOGGLE_COLLECT;
+  const Sample s = timed(pair, tracker, pose, r, teleport);
+  if (counted) {
+    CALLGRIND_TOGGLE_COLLECT;
+    CALLGRIND_DUMP_STATS;
+  }
+  return s;
+#else
+  (void)counted;
+  return timed(pair, tracker, pose, r, teleport);
+#endif
+}
+
 Outcome run(const Pair& pair, const std::vector<sc::Rigid>& path, bool penetrating) {
   Outcome o;
   const Sample none{1e300, 1e300};
@@ -192,14 +209,15 @@ Outcome run(const Pair& pair, const std::vector<sc::Rigid>& path, bool penetrati
     for (std::size_t k = 0; k < path.size(); ++k) {
       sc::PairTracker fresh;
       const bool teleport = g_jump == kTeleport && isJump(k);
+      const bool counted = g_callgrind_updates && r == 0;
       sc::DirectedResult rw, rc;
       Sample w, c;
       if ((k + r) % 2 == 0) {
-        w = timed(pair, warm, path[k], rw, teleport);
+        w = countedUpdate(pair, warm, path[k], rw, counted, teleport);
         c = timed(pair, fresh, path[k], rc, false);
       } else {
         c = timed(pair, fresh, path[k], rc, false);
-        w = timed(pair, warm, path[k], rw, teleport);
+        w = countedUpdate(pair, warm, path[k], rw, counted, teleport);
       }
       o.warm[k] = {std::min(o.warm[k].wall_us, w.wall_us), std::min(o.warm[k].cpu_us, w.cpu_us)};
       o.cold[k] = {std::min(o.cold[k].wall_us, c.wall_us), std::min(o.cold[k].cpu_us, c.cpu_us)};
@@ -264,23 +282,6 @@ bool report(const std::string& label, const Outcome& o, std::FILE* csv) {
   if (o.mismatches > 0)
     std::printf("%-15s %d steps where warm and fresh results differ\n", name, o.mismatches);
   return (over_cpu == 0 || g_jump != kAcceptanceJump) && o.mismatches == 0;
-}
-
-/// One PD update of the first run, counted alone by callgrind when asked to.
-Sample countedUpdate(const Pair& pair, sc::PairTracker& tracker, const sc::Rigid& pose,
-                     sc::DirectedResult& r, bool counted) {
-#ifdef SC_HAVE_CALLGRIND
-  if (counted) CALLGRIND_TOGGLE_COLLECT;
-  const Sample s = timed(pair, tracker, pose, r, false);
-  if (counted) {
-    CALLGRIND_TOGGLE_COLLECT;
-    CALLGRIND_DUMP_STATS;
-  }
-  return s;
-#else
-  (void)counted;
-  return timed(pair, tracker, pose, r, false);
-#endif
 }
 
 /// The PD update case: the carried tracker alone along the depth path. Prints its

@@ -161,6 +161,7 @@ void BM_HapticPath(benchmark::State& state) {
   sc::SceneSettings settings;
   settings.rotation_mode = mode;
   const sc::Placement opponent;
+  const double travel_ratio = static_cast<double>(state.range(2));
   // A seed whose path intersects at most probes of its penetrating part (a contact
   // on a thin feature, an ear, would be left by the sideways motion).
   std::vector<sc::Placement> path;
@@ -190,11 +191,16 @@ void BM_HapticPath(benchmark::State& state) {
   row.pair = std::string(kHapticPairs[index][0]) + "-" + kHapticPairs[index][1];
   const char* const mode_names[] = {"none", "input", "free", "mix"};
   row.mode = mode_names[static_cast<int>(mode)];
+  // The path is chosen at the defaults (above), so both travel rows share it.
+  if (travel_ratio > 0.0) {
+    settings.proxy_travel_ratio = travel_ratio;
+    row.mode += "/travel" + std::to_string(state.range(2));
+  }
   row.steps = kHapticSteps;
   row.max_step = max_step;
   row.delta_max = settings.safety_coefficient * settings.tolerance * settings.max_iterations;
   std::vector<double> wall, cpu;
-  const bool keep_steps = index == 0 && mode == sc::RotationMode::Input;
+  const bool keep_steps = index == 0 && mode == sc::RotationMode::Input && travel_ratio == 0.0;
   for (auto _ : state) {
     sc::PairTracker tracker;
     Vec3 previous_tpdv = Vec3::Zero();
@@ -1029,8 +1035,9 @@ void BM_ConvexPath(benchmark::State& state) {
 }
 
 // Modes: 1 = INPUT (the default), 2 = FREE.
+// arg2: PairSettings::proxy_travel_ratio (0: the default, +inf).
 BENCHMARK(BM_HapticPath)
-    ->ArgsProduct({{0, 1}, {1, 2}})
+    ->ArgsProduct({{0, 1}, {1, 2}, {0, 2}})
     ->Iterations(1)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);

@@ -80,6 +80,7 @@ inline constexpr SCenum SC_SCENE_MANAGER_THREADS = 0x0508;             // intege
 inline constexpr SCenum SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION = 0x0509;  // integer 0/1; extension
 inline constexpr SCenum SC_SCENE_MANAGER_CONTACT_POINTS = 0x050A;  // integer 0/1; extension
 inline constexpr SCenum SC_SCENE_MANAGER_TELEPORT_DISTANCE = 0x050B;  // double; extension
+inline constexpr SCenum SC_SCENE_MANAGER_PROXY_TRAVEL_RATIO = 0x050C;  // double; extension
 
 // Rotation modes (manual 8.8).
 inline constexpr SCenum SC_ROTATION_MODE_NONE = 0x0601;

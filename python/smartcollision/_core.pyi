@@ -89,12 +89,13 @@ class Settings:
     resolve_initial_intersection: bool
     contact_points: bool
     teleport_distance: float
+    proxy_travel_ratio: float
     def __init__(self, *, max_distance: float = ..., tolerance: float = ...,
                  safety_coefficient: float = ..., max_iterations: int = ...,
                  rotation_mode: RotationMode = ..., force_stiffness: float = ...,
                  torque_stiffness: float = ..., threads: int = ..., broadphase: Broadphase = ...,
                  resolve_initial_intersection: bool = ..., contact_points: bool = ...,
-                 teleport_distance: float = ...) -> None: ...
+                 teleport_distance: float = ..., proxy_travel_ratio: float = ...) -> None: ...
     def validate(self) -> None: ...
 
 class PieceStats:

@@ -128,12 +128,12 @@ void bindSettings(py::module_& m) {
                        int max_iterations, sc::RotationMode rotation_mode, double force_stiffness,
                        double torque_stiffness, int threads, sc::Broadphase broadphase,
                        bool resolve_initial_intersection, bool contact_points,
-                       double teleport_distance) {
+                       double teleport_distance, double proxy_travel_ratio) {
              const sc::PairSettings pair{max_distance,       tolerance,
                                          safety_coefficient, max_iterations,
                                          rotation_mode,      force_stiffness,
                                          torque_stiffness,   resolve_initial_intersection,
-                                         teleport_distance};
+                                         teleport_distance,  proxy_travel_ratio};
              return S{pair, threads, broadphase, contact_points};
            }),
            py::kw_only(), py::arg("max_distance") = d.max_distance,
@@ -144,7 +144,8 @@ void bindSettings(py::module_& m) {
            py::arg("broadphase") = d.broadphase,
            py::arg("resolve_initial_intersection") = d.resolve_initial_intersection,
            py::arg("contact_points") = d.contact_points,
-           py::arg("teleport_distance") = d.teleport_distance)
+           py::arg("teleport_distance") = d.teleport_distance,
+           py::arg("proxy_travel_ratio") = d.proxy_travel_ratio)
       .def_readwrite("max_distance", &S::max_distance,
                      "Pairs farther apart report NO_RESULT (inf: all).")
       .def_readwrite("tolerance", &S::tolerance,
@@ -165,6 +166,9 @@ void bindSettings(py::module_& m) {
       .def_readwrite("teleport_distance", &S::teleport_distance,
                      "A motion moving a target point farther between updates restarts the "
                      "direction as first seen (inf: every motion is a path).")
+      .def_readwrite("proxy_travel_ratio", &S::proxy_travel_ratio,
+                     "Per update the proxy moves at most this many times as far as the "
+                     "target (>= 1; inf: it settles every update; 2 keeps forces continuous).")
       .def(
           "validate", [](const S& s) { check(sc::validate(s)); },
           "Raises InvalidArgumentError naming the first field out of range.")

@@ -77,12 +77,14 @@ def test_bad_settings():
         sc.PairTracker(m, m, sc.Settings(tolerance=-1))
     tracker = sc.PairTracker(m, m)
     for bad in (sc.Settings(max_iterations=0), sc.Settings(safety_coefficient=1.5),
-                sc.Settings(max_distance=float("nan")), sc.Settings(threads=100000)):
+                sc.Settings(max_distance=float("nan")), sc.Settings(threads=100000),
+                sc.Settings(proxy_travel_ratio=0.5)):
         with pytest.raises(sc.InvalidArgumentError):
             tracker.settings = bad
         with pytest.raises(sc.InvalidArgumentError):
             bad.validate()
     assert tracker.settings.max_iterations == sc.Settings().max_iterations
+    assert sc.Settings(proxy_travel_ratio=2).proxy_travel_ratio == 2
 
 
 def test_initial_intersection():

@@ -107,7 +107,8 @@ constexpr SCenum kAttributes[] = {SC_SCENE_MANAGER_MAX_DISTANCE,
                                   SC_SCENE_MANAGER_THREADS,
                                   SC_SCENE_MANAGER_RESOLVE_INITIAL_INTERSECTION,
                                   SC_SCENE_MANAGER_CONTACT_POINTS,
-                                  SC_SCENE_MANAGER_TELEPORT_DISTANCE};
+                                  SC_SCENE_MANAGER_TELEPORT_DISTANCE,
+                                  SC_SCENE_MANAGER_PROXY_TRAVEL_RATIO};
 constexpr SCenum kStatusTypes[] = {
     SC_STATUS_COUNT,      SC_STATUS_RESULT,      SC_GROUP_ID,           SC_OBJECT_ID,
     SC_PIECE_ID,          SC_DISTANCE,           SC_CONTACT_NORMAL,     SC_POINT_ON_TARGET,

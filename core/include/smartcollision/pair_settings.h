@@ -46,6 +46,16 @@ struct PairSettings {
   /// following a path to it (model units, > 0). +inf, the default: every motion is a
   /// path, and nothing passes through however far one update goes.
   double teleport_distance = kInfinity;
+  /// In one update the proxy (the contact configuration) moves no point farther than
+  /// this many times the target's farthest-moving point did since the last update
+  /// (>= 1; in Input and None modes the proxy's turn follows the target's and only
+  /// its translation counts). +inf, the default: the proxy settles at its local
+  /// minimum in every update, and where that minimum moves faster than the target
+  /// (round a facet, off a local minimum past a convex edge) the TPDV changes by up to
+  /// the depth at once. A haptic loop that wants continuous forces sets 2: the TPDV
+  /// then changes by at most about 3x the target's step, and a proxy held back
+  /// reports DirectionStatus::Lagging until it has caught up.
+  double proxy_travel_ratio = kInfinity;
 };
 
 /// Ok, or InvalidArgument naming the first field out of range.

@@ -29,8 +29,9 @@ enum class DirectionStatus {
   Separated,              ///< apart by more than the tolerance (distance > tolerance)
   Touching,               ///< apart or in contact within the tolerance; no depth (tpdv = 0)
   Penetrating,            ///< a depth: the proxy settled at the contact configuration
-  Lagging,                ///< a depth, but the proxy ran out of iterations on its way:
-                          ///< the contact configuration is not settled (catches up later)
+  Lagging,                ///< a depth, but the proxy ran out of iterations or of travel
+                          ///< (PairSettings::proxy_travel_ratio) on its way: the contact
+                          ///< configuration is not settled (catches up later)
 };
 
 /// One direction of a pair: target T, opponent O. All vectors in world coordinates.

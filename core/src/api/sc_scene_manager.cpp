@@ -70,6 +70,8 @@ double* doubleField(sc::SceneSettings& s, SCenum attribute) {
     case SC_SCENE_MANAGER_FORCE_STIFFNESS: return &s.force_stiffness;
     case SC_SCENE_MANAGER_TORQUE_STIFFNESS: return &s.torque_stiffness;
     case SC_SCENE_MANAGER_TELEPORT_DISTANCE: return &s.teleport_distance;
+    case SC_SCENE_MANAGER_PROXY_TRAVEL_RATIO:
+      return &s.proxy_travel_ratio;
     default: return nullptr;
   }
 }

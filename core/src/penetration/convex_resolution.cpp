@@ -162,7 +162,7 @@ Probe probeAt(const ConvexPair& pair, const Rigid& pose, const Vec3& center, con
 /// contacts, it spares the report measuring the same pose again).
 int slide(const ConvexPair& pair, const Mat3& rotation, const Vec3& goal_center, const Vec3& center,
           const PairSettings& settings, const Rigid& previous, double size, Vec3& y, Probe& settled,
-          bool& has_settled) {
+          bool& has_settled, TravelBudget& travel) {
   const double skin = 0.25 * settings.tolerance;
   has_settled = false;
   int k = 0;
@@ -170,7 +170,7 @@ int slide(const ConvexPair& pair, const Mat3& rotation, const Vec3& goal_center,
     const Rigid pose = poseAt(rotation, center, y);
     const Probe p = probeAt(pair, pose, center, previous, settings.tolerance);
     const Vec3 z = p.contact ? projectOnto(goal_center, p.n, p.b + skin) : goal_center;
-    const Vec3 delta = z - y;
+    Vec3 delta = z - y;
     // Settled when the step is rounding: of the pose, and of the normal (its closest
     // points round by ~1e-15 L at a gap >= skin/2) turning the projection of a goal
     // |goal - z| away. The general path's bound omits the second: deep, it can
@@ -181,8 +181,20 @@ int slide(const ConvexPair& pair, const Mat3& rotation, const Vec3& goal_center,
       has_settled = true;
       break;
     }
-    const double s = p.contact ? 1.0 : pair.advance(pose, delta, skin);
-    y = s >= 1.0 ? z : Vec3(y + s * delta);
+    // The travel left cuts the step, but never short of the contact's plane: the proxy
+    // leaves the intersection its turn to the goal's rotation may have made.
+    const double short_by = p.contact ? p.b - p.n.dot(y) : 0.0;
+    const double rate = p.n.dot(delta);
+    const double exit = short_by <= 0.0 ? 0.0 : rate > short_by ? short_by / rate : 1.0;
+    const double keep = std::max(travel.share(delta.norm()), exit);
+    delta *= std::min(keep, 1.0);
+    const double s = p.contact ? 1.0 : std::min(1.0, pair.advance(pose, delta, skin));
+    travel.charge(s * delta.norm(), keep < 1.0);
+    y = s >= 1.0 && keep >= 1.0 ? z : Vec3(y + s * delta);
+    if (keep < 1.0) {  // held back: the proxy lags and catches up in later updates
+      ++k;
+      break;
+    }
     if (!p.contact && s >= 1.0) {  // reached the goal unobstructed
       ++k;
       break;
@@ -256,16 +268,20 @@ bool trackConvexPair(const GroupPairQuery& query, const GroupView& target,
   Vec3 y = previous * center;
   Probe settled;
   bool has_settled = false;
-  result.iterations =
-      slide(pair, rotation, goal_center, center, settings, previous, size, y, settled, has_settled);
+  const TravelBudget travel = tracker.travel();  // kept for the general path
+  result.iterations = slide(pair, rotation, goal_center, center, settings, previous, size, y,
+                            settled, has_settled, tracker.travel());
   Rigid proxy = poseAt(rotation, center, y);
   // Within the rounding of a pose written as a centre and a rotation, at the goal.
   const bool reached =
       rotation == goal.rotation &&
       (proxy * center - goal_center).norm() <= 1e-12 * (size + goal_center.norm() + center.norm());
   // None mode's first contact keeps the orientation at the impact: the general path.
-  if (!reached && mode == RotationMode::None && !tracker.penetrating()) return false;
-  const bool ran_out = result.iterations >= settings.max_iterations;
+  if (!reached && mode == RotationMode::None && !tracker.penetrating()) {
+    tracker.travel() = travel;
+    return false;
+  }
+  const bool ran_out = result.iterations >= settings.max_iterations || tracker.travel().spent;
   Vec3 touch_normal = Vec3::Zero();
   if (!reached) {
     const Probe at_proxy =

@@ -22,6 +22,9 @@ Status validate(const PairSettings& s) {
     return bad("torque_stiffness must be finite and > 0");
   if (std::isnan(s.teleport_distance) || s.teleport_distance <= 0.0)
     return bad("teleport_distance must be > 0 (+inf allowed)");
+  // Below 1 a proxy in contact could not keep up with a target merely sliding along.
+  if (std::isnan(s.proxy_travel_ratio) || s.proxy_travel_ratio < 1.0)
+    return bad("proxy_travel_ratio must be >= 1 (+inf allowed)");
   switch (s.rotation_mode) {
     case RotationMode::None:
     case RotationMode::Input:

@@ -128,6 +128,10 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   if (tracker.tracking() &&
       query.displacementBound(state.goal[dir], goal) > settings.teleport_distance)
     tracker.forget();
+  // How far the proxy may move in this update: a multiple of how far the target did.
+  const bool capped = tracker.tracking() && std::isfinite(settings.proxy_travel_ratio);
+  tracker.travel() = TravelBudget{
+      capped ? settings.proxy_travel_ratio * query.targetMotion(state.goal[dir], goal) : kInfinity};
   if (!runConvex(state, dir, target, opponent, goal, settings, outcome)) {
     Rigid free_pose;
     tracker.update(query, goal, center, settings, outcome);

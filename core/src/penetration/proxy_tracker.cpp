@@ -21,6 +21,21 @@ double skinOf(const PairSettings& s) { return 0.25 * s.tolerance; }
 /// evaluates more of them; two tolerances was the fastest of 1, 2 and 4 (haptic bench).
 double slideMarginOf(const PairSettings& s) { return 2.0 * s.tolerance; }
 
+/// The least fraction t of `delta` from y at which every row a x >= b - skin holds
+/// at y + t delta: every contact free (the rows are linear; 0 when they hold at y, 1
+/// when the QP's target, y + delta, is needed).
+double rowsHoldFrom(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const VecX>& b, double skin,
+                    const Vec3& y, const Vec3& delta) {
+  double t = 0.0;
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    const double short_by = b[i] - skin - a.row(i).dot(y);
+    if (short_by <= 0.0) continue;
+    const double rate = a.row(i).dot(delta);
+    t = std::max(t, rate > short_by ? short_by / rate : 1.0);
+  }
+  return t;
+}
+
 }  // namespace
 
 Vec3 ProxyTracker::seedNormal(GroupPairQuery& query, const LeafContact& c) const {
@@ -75,13 +90,23 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
       break;
     }
     const Vec3 target = qp.z;
-    const Vec3 delta = target - y;
+    Vec3 delta = target - y;
     if (delta.norm() <= 1e-12 * (size + y.norm())) break;
+    // The travel left cuts the step, but never short of where every row holds: the
+    // proxy leaves the intersection its turn to the goal's rotation may have made.
+    double keep = travel_.share(delta.norm());
+    if (keep < 1.0) keep = std::max(keep, rowsHoldFrom(a.topRows(m), b.head(m), skin, y, delta));
+    delta *= std::min(keep, 1.0);
     skip_.clear();
     for (const LeafContact& c : contacts_) skip_.push_back({c.t_leaf, c.o_leaf});
     std::sort(skip_.begin(), skip_.end());
-    const double s = query.translationToi(pose, delta, skin, skip_);
-    y = s >= 1.0 ? target : Vec3(y + s * delta);
+    const double s = std::min(1.0, query.translationToi(pose, delta, skin, skip_));
+    travel_.charge(s * delta.norm(), keep < 1.0);
+    y = s >= 1.0 && keep >= 1.0 ? target : Vec3(y + s * delta);
+    if (keep < 1.0) {  // held back: the proxy lags and catches up in later updates
+      ++k;
+      break;
+    }
     if (m == 0 && s >= 1.0) {  // reached the goal unobstructed
       ++k;
       break;
@@ -199,8 +224,9 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   const bool freeze = mode == RotationMode::None && penetrating_;
   const Mat3 rotation = freeze ? previous_proxy_.rotation : goal.rotation;
   bool feasible = true;
+  const TravelBudget travel = travel_;  // for a turn from the last free proxy
   out.iterations = slide(query, rotation, goal_center, center, settings, &feasible);
-  ran_out_ = out.iterations >= settings.max_iterations;
+  ran_out_ = out.iterations >= settings.max_iterations || travel_.spent;
   // An infeasible slide left the proxy intersecting: even at the goal it has not
   // reached a free pose. The slide writes its pose as a centre and a rotation, which
   // rounds: within that rounding the proxy is at the goal (else NONE would freeze its
@@ -213,12 +239,13 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
     // Penetration began in this update: None keeps the orientation at the impact.
     proxy_ = impactPose(query, goal, center, settings);
     const int used = slide(query, proxy_.rotation, goal_center, center, settings, &feasible);
-    ran_out_ = used >= settings.max_iterations;
+    ran_out_ = used >= settings.max_iterations || travel_.spent;
     out.iterations += used;
   } else if (!feasible && mode == RotationMode::Input) {
     // No translation resolves (manual Fig. 5-11): Input turns too, rotation weighted
     // far above translation, from the last free proxy.
     proxy_ = previous_proxy_;
+    travel_ = travel;
     const int used = out.iterations;
     const bool turned_to_goal = turn(query, goal, center, settings, out);
     out.iterations += used;
@@ -244,10 +271,10 @@ Rigid ProxyTracker::impactPose(GroupPairQuery& query, const Rigid& goal, const V
 
 bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                         const PairSettings& settings, ProxyOutcome& out) {
-  const TwistSlideResult slid =
-      twistSlide(query, proxy_, goal, center, previous_proxy_, settings, skinOf(settings), twist_);
+  const TwistSlideResult slid = twistSlide(query, proxy_, goal, center, previous_proxy_, settings,
+                                           skinOf(settings), twist_, travel_);
   out.iterations = slid.iterations;
-  ran_out_ = slid.blocked || slid.iterations >= settings.max_iterations;
+  ran_out_ = slid.blocked || slid.iterations >= settings.max_iterations || travel_.spent;
   return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
 }
 

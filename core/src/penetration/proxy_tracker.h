@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "penetration/travel_budget.h"
 #include "penetration/twist_slide.h"
 #include "query/group_pair_query.h"
 #include "smartcollision/pair_settings.h"
@@ -53,6 +54,8 @@ class ProxyTracker {
   void update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
               const PairSettings& settings, ProxyOutcome& out);
   void forget() { tracking_ = false; }
+  /// This update's travel (PairSettings::proxy_travel_ratio): set before update().
+  TravelBudget& travel() { return travel_; }
   bool tracking() const { return tracking_; }
   /// Starts tracking with the proxy at `proxy`, a free pose found elsewhere (the
   /// convex fast path: convex_resolution.h), penetrating since this update as after
@@ -127,6 +130,7 @@ class ProxyTracker {
   std::vector<LeafPair> skip_;        ///< the current contacts, sorted
   Vec3 touch_normal_ = Vec3::Zero();  ///< main contact's normal when the goal only touches
   TwistScratch twist_;                ///< Free and Mix work arrays
+  TravelBudget travel_;
 };
 
 }  // namespace sc::detail

@@ -56,6 +56,11 @@ Vec6 cappedTwist(TwistScratch& scratch, const Vec3& y, const Vec6& target, const
   return scratch.qp.qp.feasible ? Vec6(scratch.qp.qp.z) : Vec6(scale * z);
 }
 
+/// The farthest point motion of the twist z (translation + turn at radius rho).
+double pointTravel(const Vec6& z, double rho) {
+  return z.head<3>().norm() + z.tail<3>().norm() * rho;
+}
+
 /// How far the step `z` brings the proxy nearer the goal twist `target`: the larger
 /// of the gains in translation and in rotation (at radius rho).
 double progress(const Vec6& target, const Vec6& z, double rho) {
@@ -84,7 +89,8 @@ double stretchOf(const Vec6& z, const Vec6& last, double rho) {
 
 TwistSlideResult twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal,
                             const Vec3& center, const Rigid& previous_proxy,
-                            const PairSettings& settings, double skin, TwistScratch& scratch) {
+                            const PairSettings& settings, double skin, TwistScratch& scratch,
+                            TravelBudget& travel) {
   const double rho = targetRadius(query, center);
   const Vec6 weights = twistWeights(settings, rho);
   const double cap = settings.safety_coefficient * settings.tolerance;
@@ -117,6 +123,9 @@ TwistSlideResult twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& go
       const double stretched_turn = z.tail<3>().norm() * rho;
       if (stretched_turn > cap) z *= cap / stretched_turn;
     }
+    // Cut to the travel left before the sweep (a shorter one costs less).
+    const double keep = travel.share(pointTravel(z, rho));
+    z *= std::min(keep, 1.0);
     TwistMotion motion;
     motion.start = proxy;
     motion.center = center;
@@ -131,9 +140,16 @@ TwistSlideResult twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& go
       // advancement's bound counts the turn at the leaf's whole radius). The
       // translation alone, at no turn, opens it provably.
       z = cappedTwist(scratch, y, target, z, 0.0, rho, skin, settings.tolerance);
+      z *= std::min(travel.share(pointTravel(z, rho)), 1.0);
       motion.dc = z.head<3>();
       motion.dtheta = z.tail<3>();
       s = advance(query, motion, 0.5 * skin, scratch.skip, scratch.candidates, margin);
+    }
+    travel.charge(std::min(s, 1.0) * pointTravel(z, rho), keep < 1.0);
+    if (keep < 1.0) {  // held back: the proxy lags and catches up in later updates
+      proxy = motion.at(std::max(s, 0.0));
+      ++k;
+      break;
     }
     if (!contact && s >= 1.0 && z == target) {  // reached the goal unobstructed
       proxy = goal;

@@ -7,6 +7,7 @@
 
 #include "penetration/conservative_advancement.h"
 #include "penetration/contact_rows.h"
+#include "penetration/travel_budget.h"
 #include "smartcollision/pair_settings.h"
 
 namespace sc::detail {
@@ -44,10 +45,12 @@ struct TwistSlideResult {
 /// continues a run of shrinking parallel steps is stretched to the run's sum;
 /// conservative advancement applies it. Converged when a step in contact brings the
 /// proxy nearer the goal by less than 1e-4 of the tolerance, in translation and in
-/// rotation (at radius rho).
+/// rotation (at radius rho). Each step is charged to `travel` at its farthest point
+/// motion (translation + turn x rho); a step beyond what is left is cut to it.
 TwistSlideResult twistSlide(GroupPairQuery& query, Rigid& proxy, const Rigid& goal,
                             const Vec3& center, const Rigid& previous_proxy,
-                            const PairSettings& settings, double skin, TwistScratch& scratch);
+                            const PairSettings& settings, double skin, TwistScratch& scratch,
+                            TravelBudget& travel);
 
 /// Radius of the target's leaves about its centre (target group frame).
 double targetRadius(const GroupPairQuery& query, const Vec3& center);

@@ -120,6 +120,11 @@ class GroupPairQuery {
   double displacementBound(const Rigid& from, const Rigid& to) const {
     return near_.target().displacement(from, to);
   }
+  /// About how far the target's farthest point moves from `from` to `to` (the centre's
+  /// shift plus the turn's 2 sin(angle / 2) at the radius): a measure, not a bound.
+  double targetMotion(const Rigid& from, const Rigid& to) const {
+    return near_.target().motion(from, to);
+  }
 
  private:
   /// One piece of a part of a group, with its leaf and node index ranges.

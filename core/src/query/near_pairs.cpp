@@ -14,6 +14,11 @@ double TargetSphere::displacement(const Rigid& from, const Rigid& to) const {
   return centre_shift + spin * radius;
 }
 
+double TargetSphere::motion(const Rigid& from, const Rigid& to) const {
+  const double centre_shift = (to * center - from * center).norm();
+  return centre_shift + (to.rotation - from.rotation).norm() * radius / std::sqrt(2.0);
+}
+
 const std::vector<LeafContact>* NearPairs::memo(const Rigid& o_from_t, double threshold) const {
   const bool same = valid_ && memo_valid_ && threshold == memo_threshold_ &&
                     o_from_t.rotation == memo_pose_.rotation &&

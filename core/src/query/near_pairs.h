@@ -30,6 +30,10 @@ struct TargetSphere {
 
   /// Largest displacement of a target point from pose `from` to pose `to`.
   double displacement(const Rigid& from, const Rigid& to) const;
+  /// The same with the turn's spectral norm 2 sin(angle / 2) (the Frobenius norm of a
+  /// rotation's difference is sqrt(2) times it): nearer the true motion, but rounding
+  /// may put it below: not a bound.
+  double motion(const Rigid& from, const Rigid& to) const;
 };
 
 class NearPairs {

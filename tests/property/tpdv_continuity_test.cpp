@@ -37,28 +37,39 @@ Placement at(const Vec3& center) {
   return p;
 }
 
-TEST(TpdvContinuity, DeepAlongATessellatedSurfaceTheTurnAtEachFacetIsBounded) {
+/// The cube, the prism, their polytopes (for the exact depth) and the path: in along
+/// x from 0.01 outside to kDepth deep, then around the axis at a fixed radius over
+/// five and a half facets.
+struct PrismRun {
   const MeshData prism = prismMesh(kSides, kCircumradius, kHalfHeight),
                  cube = boxMesh(Vec3::Constant(kCubeHalf));
   const ModelPtr opponent = closedModel(prism), target = closedModel(cube);
-  ASSERT_TRUE(opponent && target);
   const detail::ConvexPolytope prism_poly = polytopeFromMesh(prism);
   const detail::ConvexPolytope cube_poly = polytopeFromMesh(cube);
+  std::vector<Vec3> path;
+
+  PrismRun() {
+    const double apothem = kCircumradius * std::cos(kPi / kSides), a = 2.0 * kPi / kSides;
+    for (double r = apothem + kCubeHalf + 0.01; r > apothem + kCubeHalf - kDepth; r -= kStep)
+      path.push_back(Vec3(r, 0, 0));
+    const double radius = path.back().x();
+    for (double t = kStep / radius; t < 5.5 * a; t += kStep / radius)
+      path.push_back(radius * Vec3(std::cos(t), std::sin(t), 0));
+  }
+};
+
+TEST(TpdvContinuity, DeepAlongATessellatedSurfaceTheTurnAtEachFacetIsBounded) {
+  const PrismRun run;
+  ASSERT_TRUE(run.opponent && run.target);
+  const std::vector<Vec3>& path = run.path;
+  const detail::ConvexPolytope &prism_poly = run.prism_poly, &cube_poly = run.cube_poly;
+  const ModelPtr &opponent = run.opponent, &target = run.target;
   const Part part_t{target.get(), Rigid(), 1}, part_o{opponent.get(), Rigid(), 2};
   SceneSettings settings;  // INPUT, tolerance 1e-3
   // Facet normals of the Minkowski difference in the xy plane: the prism's and the
   // cube's side normals, so adjacent ones are at most this far apart.
   const double a = 2.0 * kPi / kSides;
   const double turn = 2.0 * std::sin(0.5 * a), rise = 1.0 - std::cos(a);
-
-  // In along x from 0.01 outside, then around the axis at a fixed radius.
-  const double apothem = kCircumradius * std::cos(kPi / kSides);
-  std::vector<Vec3> path;
-  for (double r = apothem + kCubeHalf + 0.01; r > apothem + kCubeHalf - kDepth; r -= kStep)
-    path.push_back(Vec3(r, 0, 0));
-  const double radius = path.back().x();
-  for (double t = kStep / radius; t < 5.5 * a; t += kStep / radius)
-    path.push_back(radius * Vec3(std::cos(t), std::sin(t), 0));
 
   PairTracker tracker;
   DirectedResult out[2];
@@ -108,24 +119,16 @@ TEST(TpdvContinuity, DeepAlongATessellatedSurfaceTheTurnAtEachFacetIsBounded) {
 /// convex fast path (one convex piece each) and the general one (the prism's group also
 /// holds a far cube, so the pair is not convex).
 void cappedTravelRun(bool general_path) {
-  const MeshData prism = prismMesh(kSides, kCircumradius, kHalfHeight),
-                 cube = boxMesh(Vec3::Constant(kCubeHalf));
-  const ModelPtr opponent = closedModel(prism), target = closedModel(cube);
-  ASSERT_TRUE(opponent && target);
-  const detail::ConvexPolytope prism_poly = polytopeFromMesh(prism);
-  const detail::ConvexPolytope cube_poly = polytopeFromMesh(cube);
+  const PrismRun run;
+  ASSERT_TRUE(run.opponent && run.target);
+  const std::vector<Vec3>& path = run.path;
+  const detail::ConvexPolytope &prism_poly = run.prism_poly, &cube_poly = run.cube_poly;
+  const ModelPtr &opponent = run.opponent, &target = run.target;
   const Part part_t{target.get(), Rigid(), 1};
   const Part parts_o[2] = {{opponent.get(), Rigid(), 2},
                            {target.get(), Rigid{Mat3::Identity(), Vec3(0, 0, 50)}, 3}};
   SceneSettings settings;  // INPUT, tolerance 1e-3
   settings.proxy_travel_ratio = 2.0;
-  const double apothem = kCircumradius * std::cos(kPi / kSides), a = 2.0 * kPi / kSides;
-  std::vector<Vec3> path;
-  for (double r = apothem + kCubeHalf + 0.01; r > apothem + kCubeHalf - kDepth; r -= kStep)
-    path.push_back(Vec3(r, 0, 0));
-  const double radius = path.back().x();
-  for (double t = kStep / radius; t < 5.5 * a; t += kStep / radius)
-    path.push_back(radius * Vec3(std::cos(t), std::sin(t), 0));
 
   PairTracker tracker;
   DirectedResult out[2];

@@ -12,6 +12,8 @@
 // path (as many runs, each step's least thread CPU time): p99 <= 0.2 ms over every
 // step but the first, jumps included, or the bench exits non-zero.
 // Writes a per-step CSV with --csv=<file>; --seed=N (default 19) picks another path;
+// --path=coherent runs the distance case on the coherent distance bench's haptic-rate
+// path (mesh_distance's, seed 42) with the same jumps instead;
 // --only=distance|depth|pd one case; --jumps=0.05,0.1,0.3,teleport (default 0.05) the
 // jump lengths to run, where a teleport puts the target at a random other place on the
 // orbit and the carried tracker is reset() first (the documented teleport), so that
@@ -60,6 +62,7 @@ constexpr double kAcceptanceJump = 0.05;  // the case the target is asserted on
 constexpr int kJumpEvery = 200;
 constexpr double kStepAngle = 2e-4;  // radians per step of the orbit and of the body
 int g_runs = 3;  // --runs=N: more runs, less of the machine's load in each step's least time
+bool g_coherent_path = false;      // --path=coherent: the distance case on mesh_distance's path
 bool g_callgrind_updates = false;  // --callgrind-updates: one callgrind dump per update
 constexpr double kRatio = 1.2, kSlackUs = 20.0;
 constexpr double kPdP99Us = 200.0;  // PD update target (issue 19.3)
@@ -145,6 +148,60 @@ std::vector<sc::Rigid> makePath(const Pair& pair, double radius, bool penetratin
       s = pair.offsetAtGap(q, u, s, 0.006 + 0.004 * phase, 0.05);
       path.push_back({q, s * u});
     }
+  }
+  return path;
+}
+
+/// The coherent distance bench's haptic-rate path (bench/mesh_distance.cpp,
+/// BM_CoherentHaptic, bunny00 x bunny00, seed 42: orbit and turn by kStepAngle per
+/// step, the gap breathing in [2, 20] mm, backing off along the last normal where a
+/// turn closes it below 1 mm, sliding in by at most 0.2 mm a step), apart, with the
+/// same jumps: every kJumpEvery steps the orbit advances by g_jump along it, and the
+/// back-off keeps the landing free. `--path=coherent` runs the distance case on it.
+std::vector<sc::Rigid> makeCoherentPath(const Pair& pair, double radius) {
+  std::mt19937_64 rng(42);
+  const sc::Quat q0 = sc::support::randomRotation(rng);
+  const Vec3 u0 = randomDirection(rng);
+  const Vec3 body_axis = randomDirection(rng);
+  const Vec3 orbit_axis = u0.cross(randomDirection(rng)).normalized();
+  constexpr double kMinGap = 1e-3, kBackOff = 0.002, kMaxSlide = 0.005 * kStepAngle / 0.003;
+  auto cold = [&pair](const sc::Rigid& pose) {
+    Pair plain = pair;
+    plain.settings.resolve_initial_intersection = false;
+    sc::PairTracker tracker;
+    return plain.update(tracker, pose);
+  };
+  Vec3 t = 2.0 * radius * u0, normal = u0;
+  for (int it = 0; it < 40; ++it) {  // start near contact
+    const sc::DirectedResult r = cold({q0.toRotationMatrix(), t});
+    if (r.distance < 0.01) break;
+    t -= (r.distance - 0.005) * t.normalized();
+  }
+  std::vector<sc::Rigid> path;
+  for (int k = 0; k < g_steps; ++k) {
+    const sc::Mat3 rotation =
+        (Quat(Eigen::AngleAxisd(kStepAngle * k, body_axis)) * q0).toRotationMatrix();
+    const double gap = 0.002 * std::pow(10.0, 0.5 + 0.5 * std::sin(2.0 * M_PI * k / 400.0));
+    double jump = 0.0;
+    if (k > 0 && k % kJumpEvery == 0)
+      jump = g_jump == kTeleport ? std::uniform_real_distribution<double>(1.0, 5.0)(rng)
+                                 : g_jump / t.norm();
+    if (k > 0) t = Eigen::AngleAxisd(kStepAngle + jump, orbit_axis) * t;
+    sc::DirectedResult r = cold({rotation, t});
+    for (int it = 0; r.code != sc::ErrorCode::Ok || r.distance < kMinGap; ++it) {
+      t += kBackOff * (it < 20 ? normal : t.normalized());
+      r = cold({rotation, t});
+    }
+    double slide_left = kMaxSlide;
+    for (int it = 0; it < 3; ++it) {
+      const double slide = std::min(r.distance - gap, slide_left);
+      if (slide < 1e-6) break;
+      t -= slide * t.normalized();
+      slide_left -= slide;
+      r = cold({rotation, t});
+    }
+    normal = r.normal;
+    path.push_back({rotation, t});
   }
   return path;
 }
@@ -334,6 +391,7 @@ int main(int argc, char** argv) {
       g_seed = static_cast<unsigned>(std::strtoul(argv[i] + 7, nullptr, 10));
     if (std::strncmp(argv[i], "--jumps=", 8) == 0) jumps = parseJumps(argv[i] + 8);
     if (std::strcmp(argv[i], "--callgrind-updates") == 0) g_callgrind_updates = true;
+    if (std::strcmp(argv[i], "--path=coherent") == 0) g_coherent_path = true;
   }
   if (csv)
     std::fprintf(csv, "case,jump,step,warm_wall_us,warm_cpu_us,fresh_wall_us,fresh_cpu_us\n");
@@ -351,7 +409,9 @@ int main(int argc, char** argv) {
       Pair pair{{bunny.model.get(), sc::Rigid(), 0}, {bunny.model.get(), sc::Rigid(), 1}, {}};
       pair.settings.resolve_initial_intersection = true;  // a fresh tracker's depth: global
       pair.settings.teleport_distance = g_teleport_distance;
-      const std::vector<sc::Rigid> path = makePath(pair, bunny.radius, penetrating);
+      const std::vector<sc::Rigid> path = g_coherent_path && !penetrating
+                                              ? makeCoherentPath(pair, bunny.radius)
+                                              : makePath(pair, bunny.radius, penetrating);
       sc::PairTracker warm_up;  // first calls pay for lazily built state: not a step's cost
       pair.update(warm_up, path[0]);
       if (std::strcmp(name, "pd") == 0) {

@@ -81,7 +81,7 @@ TEST(SlideCreep, StretchedRunsBoundTheIterationsAlongHapticPaths) {
       updates, penetrating, total, worst, long_slides);
   EXPECT_GT(penetrating, 2 * updates / 5);
   // Unstretched, 42 penetrating updates take 8 iterations or more (2,261 in all);
-  // stretched, 31 (2,204). Most of those left slide far along a curved contact.
+  // stretched, 31 (2,204).
   EXPECT_LE(long_slides, 36);
 }
 

@@ -64,6 +64,14 @@ void ProxyTracker::buildRows(GroupPairQuery& query, const Rigid& pose) {
     const Vec3 y = pose.translation;  // rows are written for the pose's translation
     rows_.push_back({n, n.dot(y) - sep});
   }
+  rows_pose_ = pose;
+  rows_current_ = true;
+}
+
+void ProxyTracker::gatherContacts(GroupPairQuery& query, const Rigid& pose,
+                                  const PairSettings& settings) {
+  query.contactsNear(pose, settings.tolerance, slideMarginOf(settings), contacts_);
+  rows_current_ = false;
 }
 
 int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
@@ -80,7 +88,7 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
     const Rigid pose = poseAt(rotation, center, y);
     // Each iteration moves the proxy a little at one rotation: re-evaluate only the
     // pairs found within a margin while it moves less than that margin.
-    query.contactsNear(pose, settings.tolerance, slideMarginOf(settings), contacts_);
+    gatherContacts(query, pose, settings);
     if (stretched && !clearOf(contacts_, 0.5 * skin)) {
       // Past its target no row held the stretch: back to the target, which they did.
       y = certified;
@@ -130,8 +138,7 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
     }
   }
   if (stretched) {  // the iterations ran out before a stretch was checked
-    query.contactsNear(poseAt(rotation, center, y), settings.tolerance, slideMarginOf(settings),
-                       contacts_);
+    gatherContacts(query, poseAt(rotation, center, y), settings);
     if (!clearOf(contacts_, 0.5 * skin)) y = certified;
   }
   proxy_ = poseAt(rotation, center, y);
@@ -195,6 +202,7 @@ bool ProxyTracker::sweptFree(GroupPairQuery& query, const Rigid& goal, const Vec
 void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                           const PairSettings& settings, ProxyOutcome& out) {
   out = ProxyOutcome();
+  rows_current_ = false;  // seeded normals follow previous_proxy_, which moves on
   if (!tracking_) {
     if (query.intersects(goal)) {
       out.code = ErrorCode::InvalidInitialTransformation;
@@ -319,7 +327,9 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, c
                                      const PairSettings& settings, ProxyOutcome& out) {
   // Depth against the exact planes (zero skin): unbiased by the skin. A proxy that
   // turned is projected with rotation too, or the skin would stay in its RPDV.
-  query.contactsNear(proxy_, settings.tolerance, slideMarginOf(settings), contacts_);
+  // A slide that stopped here gathered them here last (the query's memo would
+  // answer the same).
+  if (!rowsAt(proxy_)) gatherContacts(query, proxy_, settings);
   const bool turned =
       settings.rotation_mode != RotationMode::None && proxy_.rotation != goal.rotation;
   Rigid contact_pose = proxy_;
@@ -348,7 +358,7 @@ int ProxyTracker::projectTranslation(GroupPairQuery& query, const Rigid& goal, c
                                      const PairSettings& settings, Rigid& contact_pose,
                                      Vec3& normal) {
   const Vec3 y = proxy_ * center;
-  buildRows(query, proxy_);
+  if (!rowsAt(proxy_)) buildRows(query, proxy_);  // else the slide's last, at this pose
   const Vec3 rc = proxy_.rotation * center;
   const int m = static_cast<int>(rows_.size());
   MatX& a = twist_.slide_a;  // the slide's kept arrays: no allocation per report

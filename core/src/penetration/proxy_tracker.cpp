@@ -36,6 +36,30 @@ double rowsHoldFrom(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const VecX
   return t;
 }
 
+/// The longest stretch of a slide step that continues a run of shrinking parallel steps.
+constexpr double kMaxStretch = 8.0;
+
+/// Along a curved contact (an edge or a vertex of a leaf, its normal turning as the
+/// proxy moves) each QP sees a tangent plane only: the steps run parallel and shrink
+/// by a ratio q (a half where the contact meets another at a small angle), so the
+/// proxy creeps. When `delta` continues such a run (parallel to `last`, the last step,
+/// taken whole, and q in [0.3, 1)), the factor 1 / (1 - q) that sums the series, at
+/// most kMaxStretch and past the QP target by at most `reach`; else 1.
+double stretchOf(const Vec3& delta, const Vec3& last, double reach) {
+  const double dd = delta.norm(), ll = last.norm();
+  if (!(dd > 0.0 && ll > 0.0) || delta.dot(last) < 0.99 * dd * ll) return 1.0;
+  const double q = dd / ll;
+  if (q < 0.3 || q >= 1.0) return 1.0;
+  return std::min({1.0 / (1.0 - q), kMaxStretch, 1.0 + reach / dd});
+}
+
+/// True when every contact is at least `gap` apart (a kept pair's bound counts).
+bool clearOf(const std::vector<LeafContact>& contacts, double gap) {
+  for (const LeafContact& c : contacts)
+    if (c.intersecting || c.gap < gap) return false;
+  return true;
+}
+
 }  // namespace
 
 Vec3 ProxyTracker::seedNormal(GroupPairQuery& query, const LeafContact& c) const {
@@ -55,6 +79,14 @@ void ProxyTracker::buildRows(GroupPairQuery& query, const Rigid& pose) {
     const Vec3 y = pose.translation;  // rows are written for the pose's translation
     rows_.push_back({n, n.dot(y) - sep});
   }
+  rows_pose_ = pose;
+  rows_current_ = true;
+}
+
+void ProxyTracker::gatherContacts(GroupPairQuery& query, const Rigid& pose,
+                                  const PairSettings& settings) {
+  query.contactsNear(pose, settings.tolerance, slideMarginOf(settings), contacts_);
+  rows_current_ = false;
 }
 
 int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3& goal_center,
@@ -63,12 +95,23 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
   const double size = query.targetSize();  // step thresholds are relative to it
   Vec3 y = proxy_ * center;
   *feasible = true;
+  Vec3 last = Vec3::Zero();  // the last QP step, when it was taken whole
+  Vec3 certified = y;        // the last QP target reached, when a stretch went past it
+  bool stretched = false;
   int k = 0;
   for (; k < settings.max_iterations; ++k) {
     const Rigid pose = poseAt(rotation, center, y);
     // Each iteration moves the proxy a little at one rotation: re-evaluate only the
     // pairs found within a margin while it moves less than that margin.
-    query.contactsNear(pose, settings.tolerance, slideMarginOf(settings), contacts_);
+    gatherContacts(query, pose, settings);
+    if (stretched && !clearOf(contacts_, 0.5 * skin)) {
+      // Past its target no row held the stretch: back to the target, which they did.
+      y = certified;
+      stretched = false;
+      last.setZero();
+      continue;
+    }
+    stretched = false;
     buildRows(query, pose);
     // Rows constrain the pose's translation t = y - R c; shift them to y.
     const Vec3 rc = rotation * center;
@@ -100,9 +143,17 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
     skip_.clear();
     for (const LeafContact& c : contacts_) skip_.push_back({c.t_leaf, c.o_leaf});
     std::sort(skip_.begin(), skip_.end());
-    const double s = std::min(1.0, query.translationToi(pose, delta, skin, skip_));
+    // The rows hold the contacts up to the target; a stretch past it by at most skin / 2
+    // keeps them at >= skin / 2 all the way if they are there at its end (the gap is
+    // 1-Lipschitz), which the next iteration's contacts check. A cut step is not
+    // stretched.
+    const double stretch = m > 0 && keep >= 1.0 ? stretchOf(delta, last, 0.5 * skin) : 1.0;
+    const double s = stretch * query.translationToi(pose, stretch * delta, skin, skip_);
     travel_.charge(s * delta.norm(), keep < 1.0);
-    y = s >= 1.0 && keep >= 1.0 ? target : Vec3(y + s * delta);
+    last = s >= stretch ? delta : Vec3::Zero();
+    stretched = s > 1.0;
+    certified = target;
+    y = s == 1.0 && keep >= 1.0 ? target : Vec3(y + s * delta);
     if (keep < 1.0) {  // held back: the proxy lags and catches up in later updates
       ++k;
       break;
@@ -111,6 +162,10 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
       ++k;
       break;
     }
+  }
+  if (stretched) {  // the iterations ran out before a stretch was checked
+    gatherContacts(query, poseAt(rotation, center, y), settings);
+    if (!clearOf(contacts_, 0.5 * skin)) y = certified;
   }
   proxy_ = poseAt(rotation, center, y);
   return k;
@@ -173,6 +228,7 @@ bool ProxyTracker::sweptFree(GroupPairQuery& query, const Rigid& goal, const Vec
 void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                           const PairSettings& settings, ProxyOutcome& out) {
   out = ProxyOutcome();
+  rows_current_ = false;  // seeded normals follow previous_proxy_, which moves on
   if (!tracking_) {
     if (query.intersects(goal)) {
       out.code = ErrorCode::InvalidInitialTransformation;
@@ -299,7 +355,9 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, c
                                      const PairSettings& settings, ProxyOutcome& out) {
   // Depth against the exact planes (zero skin): unbiased by the skin. A proxy that
   // turned is projected with rotation too, or the skin would stay in its RPDV.
-  query.contactsNear(proxy_, settings.tolerance, slideMarginOf(settings), contacts_);
+  // A slide that stopped here gathered them here last (the query's memo would
+  // answer the same).
+  if (!rowsAt(proxy_)) gatherContacts(query, proxy_, settings);
   const bool turned =
       settings.rotation_mode != RotationMode::None && proxy_.rotation != goal.rotation;
   Rigid contact_pose = proxy_;
@@ -328,7 +386,7 @@ int ProxyTracker::projectTranslation(GroupPairQuery& query, const Rigid& goal, c
                                      const PairSettings& settings, Rigid& contact_pose,
                                      Vec3& normal) {
   const Vec3 y = proxy_ * center;
-  buildRows(query, proxy_);
+  if (!rowsAt(proxy_)) buildRows(query, proxy_);  // else the slide's last, at this pose
   const Vec3 rc = proxy_.rotation * center;
   const int m = static_cast<int>(rows_.size());
   MatX& a = twist_.slide_a;  // the slide's kept arrays: no allocation per report

@@ -117,7 +117,16 @@ class ProxyTracker {
   int projectTwist(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                    const PairSettings& settings, Rigid& contact_pose, Vec3& normal);
   static constexpr int kGoalTouches = -2;
+  /// contactsNear() at `pose` into contacts_ (within the tolerance, the slide's margin).
+  void gatherContacts(GroupPairQuery& query, const Rigid& pose, const PairSettings& settings);
+  /// rows_ from contacts_, both at `pose`.
   void buildRows(GroupPairQuery& query, const Rigid& pose);
+  /// True when contacts_ and rows_ are those at exactly `pose` (the slide's last
+  /// iteration there): the depth's projection need not gather nor build them again.
+  bool rowsAt(const Rigid& pose) const {
+    return rows_current_ && rows_pose_.rotation == pose.rotation &&
+           rows_pose_.translation == pose.translation;
+  }
   Vec3 seedNormal(GroupPairQuery& query, const LeafContact& c) const;
 
   bool tracking_ = false;
@@ -127,6 +136,8 @@ class ProxyTracker {
   Rigid previous_proxy_;  ///< proxy at the start of this update (free)
   std::vector<LeafContact> contacts_;
   std::vector<Row> rows_;
+  Rigid rows_pose_;                   ///< where contacts_ and rows_ were last built
+  bool rows_current_ = false;         ///< rows_ are those of contacts_ (both at rows_pose_)
   std::vector<LeafPair> skip_;        ///< the current contacts, sorted
   Vec3 touch_normal_ = Vec3::Zero();  ///< main contact's normal when the goal only touches
   TwistScratch twist_;                ///< Free and Mix work arrays

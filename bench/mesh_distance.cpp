@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "coherent_path.h"
 #include "harness.h"
 #include "meshes.h"
 #include "pair_queries.h"
@@ -196,59 +197,20 @@ void coherentPath(benchmark::State& state, double step_angle, const std::string&
   if (!found) return;
   const Pair& pair = *found;
   const std::string& name = pair.name;
-  std::mt19937_64 rng(42 + static_cast<unsigned>(state.range(0)));
-  const Quat q0 = randomRotation(rng);
-  const Vec3 u0 = randomDirection(rng);
-  const Vec3 body_axis = randomDirection(rng);
-  const Vec3 orbit_axis = u0.cross(randomDirection(rng)).normalized();
-
-  // The path, built before any timing: the target orbits the opponent's centre and
-  // turns; it backs off along the last contact normal when a turn brings it closer
-  // than kMinGap, and slides towards the opponent's centre by at most kMaxSlide per
-  // step towards the gap (the distance is 1-Lipschitz, so a slide of d - gap never
-  // reaches contact). Small steps even where a contact slips away.
-  constexpr double kMinGap = 1e-3, kBackOff = 0.002;
-  const double kMaxSlide = 0.005 * step_angle / kStepAngle;
-  const Eigen::AngleAxisd orbit_step(step_angle, orbit_axis);
-  std::vector<sc::Rigid> path;
+  // The path, built before any timing (coherent_path.h).
+  sc_bench::CoherentPathSpec spec;
+  spec.seed = 42 + static_cast<unsigned>(state.range(0));
+  spec.step_angle = step_angle;
+  spec.steps = kTrajectorySteps;
+  spec.start_offset = pair.a->radius + pair.b->radius;
+  const std::vector<sc::Rigid> path = sc_bench::coherentPath(
+      spec, [&pair](const sc::Rigid& pose) { return pair.coldResult(pose); });
   std::vector<double> path_distance, moves;
-  Vec3 t = (pair.a->radius + pair.b->radius) * u0;
-  Vec3 normal = u0;
-  {  // start near contact
-    const sc::Mat3 rotation = q0.toRotationMatrix();
-    for (int it = 0; it < 40; ++it) {
-      const sc::DirectedResult r = pair.coldResult({rotation, t});
-      if (r.distance < 0.01) break;
-      t -= (r.distance - 0.005) * t.normalized();
-    }
-  }
-  for (int k = 0; k < kTrajectorySteps; ++k) {
-    const Quat q = Quat(Eigen::AngleAxisd(step_angle * k, body_axis)) * q0;
-    const sc::Mat3 rotation = q.toRotationMatrix();
-    const double gap = 0.002 * std::pow(10.0, 0.5 + 0.5 * std::sin(2.0 * M_PI * k / 400.0));
-    if (k > 0) t = orbit_step * t;
-    sc::DirectedResult r = pair.coldResult({rotation, t});
-    for (int it = 0; r.code != sc::ErrorCode::Ok || r.distance < kMinGap; ++it) {
-      t += kBackOff * (it < 20 ? normal : t.normalized());
-      r = pair.coldResult({rotation, t});
-    }
-    double slide_left = kMaxSlide;
-    for (int it = 0; it < 3; ++it) {
-      const double slide = std::min(r.distance - gap, slide_left);
-      if (slide < 1e-6) break;
-      t -= slide * t.normalized();
-      slide_left -= slide;
-      r = pair.coldResult({rotation, t});
-    }
-    normal = r.normal;
-    const sc::Rigid pose{rotation, t};
-    if (!path.empty()) {
-      double move = 0.0;
-      for (const Vec3& v : pair.a->mesh.vertices)
-        move = std::max(move, (pose * v - path.back() * v).norm());
-      moves.push_back(move);
-    }
-    path.push_back(pose);
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    double move = 0.0;
+    for (const Vec3& v : pair.a->mesh.vertices)
+      move = std::max(move, (path[k] * v - path[k - 1] * v).norm());
+    moves.push_back(move);
   }
 
   sc::PairTracker tracker;

@@ -40,6 +40,7 @@
 #define SC_HAVE_CALLGRIND 1
 #endif
 
+#include "coherent_path.h"
 #include "harness.h"
 #include "meshes.h"
 #include "sc_support/off_mesh.h"
@@ -153,57 +154,22 @@ std::vector<sc::Rigid> makePath(const Pair& pair, double radius, bool penetratin
 }
 
 /// The coherent distance bench's haptic-rate path (bench/mesh_distance.cpp,
-/// BM_CoherentHaptic, bunny00 x bunny00, seed 42: orbit and turn by kStepAngle per
-/// step, the gap breathing in [2, 20] mm, backing off along the last normal where a
-/// turn closes it below 1 mm, sliding in by at most 0.2 mm a step), apart, with the
-/// same jumps: every kJumpEvery steps the orbit advances by g_jump along it, and the
-/// back-off keeps the landing free. `--path=coherent` runs the distance case on it.
+/// BM_CoherentHaptic on bunny00 x bunny00: coherent_path.h, seed 42, kStepAngle per
+/// step), apart, with the same jumps along the orbit (a teleport: 2 units along it,
+/// the carried tracker reset). `--path=coherent` runs the distance case on it.
 std::vector<sc::Rigid> makeCoherentPath(const Pair& pair, double radius) {
-  std::mt19937_64 rng(42);
-  const sc::Quat q0 = sc::support::randomRotation(rng);
-  const Vec3 u0 = randomDirection(rng);
-  const Vec3 body_axis = randomDirection(rng);
-  const Vec3 orbit_axis = u0.cross(randomDirection(rng)).normalized();
-  constexpr double kMinGap = 1e-3, kBackOff = 0.002, kMaxSlide = 0.005 * kStepAngle / 0.003;
-  auto cold = [&pair](const sc::Rigid& pose) {
+  sc_bench::CoherentPathSpec spec;
+  spec.step_angle = kStepAngle;
+  spec.steps = g_steps;
+  spec.start_offset = 2.0 * radius;
+  spec.jump_every = kJumpEvery;
+  spec.jump = g_jump == kTeleport ? 2.0 : g_jump;
+  return sc_bench::coherentPath(spec, [&pair](const sc::Rigid& pose) {
     Pair plain = pair;
     plain.settings.resolve_initial_intersection = false;
     sc::PairTracker tracker;
     return plain.update(tracker, pose);
-  };
-  Vec3 t = 2.0 * radius * u0, normal = u0;
-  for (int it = 0; it < 40; ++it) {  // start near contact
-    const sc::DirectedResult r = cold({q0.toRotationMatrix(), t});
-    if (r.distance < 0.01) break;
-    t -= (r.distance - 0.005) * t.normalized();
-  }
-  std::vector<sc::Rigid> path;
-  for (int k = 0; k < g_steps; ++k) {
-    const sc::Mat3 rotation =
-        (Quat(Eigen::AngleAxisd(kStepAngle * k, body_axis)) * q0).toRotationMatrix();
-    const double gap = 0.002 * std::pow(10.0, 0.5 + 0.5 * std::sin(2.0 * M_PI * k / 400.0));
-    double jump = 0.0;
-    if (k > 0 && k % kJumpEvery == 0)
-      jump = g_jump == kTeleport ? std::uniform_real_distribution<double>(1.0, 5.0)(rng)
-                                 : g_jump / t.norm();
-    if (k > 0) t = Eigen::AngleAxisd(kStepAngle + jump, orbit_axis) * t;
-    sc::DirectedResult r = cold({rotation, t});
-    for (int it = 0; r.code != sc::ErrorCode::Ok || r.distance < kMinGap; ++it) {
-      t += kBackOff * (it < 20 ? normal : t.normalized());
-      r = cold({rotation, t});
-    }
-    double slide_left = kMaxSlide;
-    for (int it = 0; it < 3; ++it) {
-      const double slide = std::min(r.distance - gap, slide_left);
-      if (slide < 1e-6) break;
-      t -= slide * t.normalized();
-      slide_left -= slide;
-      r = cold({rotation, t});
-    }
-    normal = r.normal;
-    path.push_back({rotation, t});
-  }
-  return path;
+  });
 }
 
 /// One update, timed; `teleport` resets the tracker first (in the time).

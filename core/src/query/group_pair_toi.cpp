@@ -46,7 +46,8 @@ struct GroupPairQuery::ToiPolicy {
   /// The entry of a pair whose start distance is at least `bound`: its gap shrinks by
   /// at most |delta| per unit of the motion.
   double entryByBound(double bound) const {
-    return bound > skin ? (bound - skin) / reach_length : 0.0;
+    if (bound <= skin) return 0.0;
+    return reach_length > 0.0 ? (bound - skin) / reach_length : kInfinity;
   }
   /// False when the pair's bounding spheres stay more than skin / 2 apart up to the
   /// limit: the target sphere's centre runs along a segment.
@@ -98,7 +99,7 @@ struct GroupPairQuery::ToiPolicy {
     const int n = q.planes_.find(q.keyOf(p), start.rotation, planes);
     // n passes take the planes in any order.
     for (int pass = 0; pass < n && s < limit; ++pass) {
-      for (int i = 0; i < n; ++i) {
+      for (int i = 0; i < n && s < limit; ++i) {
         const double gap = planes[i].offset + planes[i].normal.dot(start.translation);
         const double closing = -planes[i].normal.dot(delta);  // per unit of s, forwards
         const double at_s = gap - closing * s;

@@ -119,15 +119,20 @@ struct GroupPairQuery::ToiPolicy {
     const double behind = closing >= 0.0 ? kInfinity : room / -closing;
     return {s - behind, s + ahead};
   }
+  /// True for a leaf pair the caller skips (a contact it already holds).
+  bool skipped(const NodePair& p) const {
+    const Slot& ts = q.t_slots_[p.t_slot];
+    const Slot& os = q.o_slots_[p.o_slot];
+    const HullBvhNode& t = ts.data->hierarchy.nodes[p.t_node];
+    const HullBvhNode& o = os.data->hierarchy.nodes[p.o_node];
+    if (skip.empty() || !t.leaf() || !o.leaf()) return false;
+    const LeafPair leaves{ts.first_leaf + t.polytope, os.first_leaf + o.polytope};
+    return std::binary_search(skip.begin(), skip.end(), leaves);
+  }
   /// Conservative advancement of a leaf pair, from the start (its stops, and so the
   /// answer, are those of every leaf pair's advancement); false when the limit
   /// reached 0.
   bool visit(const NodePair& p) {
-    const Slot& ts = q.t_slots_[p.t_slot];
-    const Slot& os = q.o_slots_[p.o_slot];
-    const LeafPair leaves{ts.first_leaf + ts.data->hierarchy.nodes[p.t_node].polytope,
-                          os.first_leaf + os.data->hierarchy.nodes[p.o_node].polytope};
-    if (std::binary_search(skip.begin(), skip.end(), leaves)) return true;
     // The separating plane of the current closest points stays separating while the
     // target moves towards it by less than the gap.
     const Rigid& start = q.o_from_piece_[p.t_slot];
@@ -164,7 +169,7 @@ void GroupPairQuery::sweep(ToiPolicy& policy) {
   };
   // A child's hulls lie within its parent's: it enters no earlier.
   const auto offer = [&](double parent_when, const NodePair& pair) {
-    if (!policy.sphereReaches(pair)) return;
+    if (policy.skipped(pair) || !policy.sphereReaches(pair)) return;
     const double when = std::max(parent_when, policy.entryByBound(pair.bound));
     if (when < policy.limit) push(when, 0, pair);
   };
@@ -236,7 +241,7 @@ double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, 
     if (policy.prunes(near_.gapBound(i))) continue;
     const LeafContact& candidate = near_.pairs()[i];
     NodePair p = leafPair(candidate.t_leaf, candidate.o_leaf);
-    if (!policy.sphereReaches(p)) continue;
+    if (policy.skipped(p) || !policy.sphereReaches(p)) continue;
     bool closed = false;
     if (policy.advance(p, 0.0, kMaxNodeSteps, closed) >= policy.limit) continue;
     if (!policy.visit(p)) break;

@@ -331,7 +331,7 @@ TEST_F(GroupPairQueryTest, TranslationToiAlongTheContactMatchesAllLeafPairs) {
 TEST_F(GroupPairQueryTest, SweepsInARowAtOneRotationMatchAllLeafPairs) {
   test::Rng rng(23);
   const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
-  constexpr int kSlides = SC_TEST_SANITIZED ? 4 : 10;
+  constexpr int kSlides = SC_TEST_SANITIZED ? 4 : 24;
   ToiTally tally;
   Rigid pose, last;  // last: the start of the last slide run
   for (int c = 0; c < kSlides; ++c) {

@@ -129,6 +129,7 @@ void GroupPairQuery::bind(const GroupView& target, const GroupView& opponent) {
   }
   if (!t_same || !o_same || t_moved || o_moved) {
     known_ = false;
+    planes_.clear();
     near_.drop();
     front_.drop();
   }
@@ -207,10 +208,10 @@ Leaf GroupPairQuery::leafOf(const std::vector<Slot>& slots, int leaf) {
 // ---------------------------------------------------------------------------
 // Node pairs
 
-SimplexCache& GroupPairQuery::cacheOf(const NodePair& p) {
+std::uint64_t GroupPairQuery::keyOf(const NodePair& p) const {
   const auto t = static_cast<std::uint32_t>(t_slots_[p.t_slot].first_node + p.t_node);
   const auto o = static_cast<std::uint32_t>(o_slots_[p.o_slot].first_node + p.o_node);
-  return caches_.at(static_cast<std::uint64_t>(t) << 32 | o);
+  return static_cast<std::uint64_t>(t) << 32 | o;
 }
 
 void GroupPairQuery::placeTargets(const Rigid& o_from_t) {

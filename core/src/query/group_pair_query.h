@@ -17,6 +17,7 @@
 #include "query/near_front.h"
 #include "query/near_pairs.h"
 #include "query/pair_cache.h"
+#include "query/plane_memo.h"
 #include "smartcollision/group.h"
 
 namespace sc::detail {
@@ -157,7 +158,9 @@ class GroupPairQuery {
   const ConvexPolytope& polytopeOf(const Slot& slot, int node) const {
     return slot.data->hierarchy.polytope(slot.data->patches, node);
   }
-  SimplexCache& cacheOf(const NodePair& p);
+  /// A node pair's key in caches_ and planes_: its two nodes' group-wide indices.
+  std::uint64_t keyOf(const NodePair& p) const;
+  SimplexCache& cacheOf(const NodePair& p) { return caches_.at(keyOf(p)); }
   /// Places every target piece in the opponent frame for this query.
   void placeTargets(const Rigid& o_from_t);
   double sphereBound(const NodePair& p) const;
@@ -226,6 +229,9 @@ class GroupPairQuery {
                                 bool defer_virtual = false);
   template <class Policy>
   void traverse(Policy& policy);
+  /// translationToi()'s traversal: node pairs taken in the order of the earliest
+  /// fraction of the motion at which they can block, not of their distance.
+  void sweep(ToiPolicy& policy);
   /// traverse() in two parts: the root pairs into `heap`, then node pairs taken from
   /// it, at most `budget` of them (negative: no limit) and only while the nearest
   /// left is nearer than `until`; true once the traversal is done.
@@ -249,6 +255,15 @@ class GroupPairQuery {
   std::vector<NodePair> heap_;
   std::vector<PlacedFace> faces_t_, faces_o_;  ///< refine()'s scratch
   PairCache caches_;
+  PlaneMemo planes_;  ///< node pairs' separating planes found by the sweeps
+  /// sweep()'s queue entry: a node pair, the fraction of the motion before which it
+  /// stays more than skin apart, and the GJK runs that pushed that on.
+  struct Timed {
+    double when = 0.0;
+    int steps = 0;
+    NodePair pair;
+  };
+  std::vector<Timed> sweep_heap_;
   LeafPair seed_;  ///< closest leaf pair of the last distance(), or -1s
   /// The last distance(): every leaf pair was at least known_gap_ apart at known_pose_.
   bool known_ = false;

@@ -2,6 +2,14 @@
 // GroupPairQuery::translationToi: how far the target translates before a leaf pair
 // blocks it, by conservative advancement on the pairs the hull hierarchies cannot
 // rule out along the motion.
+//
+// The node pairs are taken earliest first: each carries a fraction of the motion
+// before which its hulls stay more than skin apart (its entry), pushed on by the
+// separating planes of GJK runs at it, one per turn. A pair is split, or its leaves
+// advanced, only once no plane is open at its entry, and none is looked at whose
+// entry is past the limit found so far: what lies along the motion beyond the first
+// contact costs nothing. Planes found at one rotation serve the next sweeps at it
+// (PlaneMemo): a slide's sweeps all run at its rotation.
 #include <algorithm>
 #include <utility>
 
@@ -14,6 +22,9 @@ namespace sc::detail {
 namespace {
 
 constexpr int kMaxAdvanceSteps = 64;
+/// GJK runs that push a node pair's entry on before it is split regardless: a
+/// pair creeping up on the skin (Zeno) goes to its children instead.
+constexpr int kMaxNodeSteps = 8;
 
 Rigid translated(const Rigid& x, const Vec3& delta) { return {x.rotation, x.translation + delta}; }
 
@@ -26,22 +37,21 @@ struct GroupPairQuery::ToiPolicy {
   double skin;
   const std::vector<LeafPair>& skip;
   double limit = 1.0;
-  SimplexCache scratch_;                ///< warm start of the planes sampled along the motion
-  static constexpr int kMaxPlanes = 6;  ///< sampled per node pair, past the two ends
 
   // The pair's gap shrinks by at most limit * |delta| along the way; a pair that
   // starts within skin would block at once.
   bool prunes(double bound) const {
     return bound > skin && bound - limit * reach_length > 0.5 * skin;
   }
-  double reach() const { return limit * reach_length + 0.5 * skin; }
-  double splitWithin() const { return -1.0; }
-  bool full() const { return false; }
-  void pruned(const NodePair&) const {}
-  /// May tighten p's bound with the GJK it runs (then marked refined, so the
-  /// traversal does not run it again).
-  bool admits(NodePair& p) {
-    // Swept bounding spheres: the target sphere's centre runs along a segment.
+  /// The entry of a pair whose start distance is at least `bound`: its gap shrinks by
+  /// at most |delta| per unit of the motion.
+  double entryByBound(double bound) const {
+    if (bound <= skin) return 0.0;
+    return reach_length > 0.0 ? (bound - skin) / reach_length : kInfinity;
+  }
+  /// False when the pair's bounding spheres stay more than skin / 2 apart up to the
+  /// limit: the target sphere's centre runs along a segment.
+  bool sphereReaches(const NodePair& p) const {
     const HullBvhNode& t = q.t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
     const Slot& os = q.o_slots_[p.o_slot];
     const HullBvhNode& o = os.data->hierarchy.nodes[p.o_node];
@@ -49,44 +59,55 @@ struct GroupPairQuery::ToiPolicy {
     const double swept =
         pointSegmentDistance(os.group_from_piece * o.center, c0, c0 + limit * delta) - t.radius -
         o.radius;
-    if (swept > 0.5 * skin) return false;
-    return !planesKeepApart(p);
+    return swept <= 0.5 * skin;
   }
-  /// True when the hulls stay more than skin apart up to `limit`, by separating
-  /// planes: along the normal n of the plane at some point s of the motion they part
-  /// at the rate n.delta, whatever the distance does, so that plane keeps them apart
-  /// over an interval around s. The planes at the start and at `limit` go first, then
-  /// planes in the middle of what is left uncovered, a few per pair. A motion along
-  /// the contact (a jump sideways) prunes what the distance bound alone, assuming the
-  /// worst direction, would keep.
-  bool planesKeepApart(NodePair& p) {
-    if (!q.hullsOf(p)) return false;  // no hull, no plane: its children may have one
-    const GjkResult r = q.nodeGjk(p, reach(), -1.0);
-    if (r.status == GjkStatus::BeyondMaxDistance) return true;
-    p.bound = std::max(p.bound, r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound);
-    p.refined = true;
-    if (prunes(p.bound)) return true;
-    const double s1 = openInterval(r, 0.0).second;
-    if (s1 >= limit) return true;
-    if (s1 < 0.0) return false;
-    // Later planes start from the start's simplex; the pair's cache keeps that one.
-    scratch_ = q.cacheOf(p);
-    const double s0 = openInterval(sampleAt(p, limit), limit).first;
-    return s0 <= limit && coverGap(p, s1, s0, kMaxPlanes);
+  /// Pushes p's entry s on by its known planes, then by up to `steps` GJK runs at it.
+  /// `closed` when no plane is open at the entry returned (p within skin there, or no
+  /// hulls to run GJK on); kInfinity when p never comes within skin / 2 before the limit.
+  double advance(NodePair& p, double s, int steps, bool& closed) {
+    closed = false;
+    if (!q.hullsOf(p)) {  // no hull, no plane: its children may have one
+      closed = true;
+      return s;
+    }
+    for (int k = 0; k < steps && s < limit; ++k) {
+      s = knownPlanesReach(p, s);
+      if (s >= limit) break;
+      GjkSettings settings;  // beyond this it cannot come within skin / 2 in time
+      settings.max_distance = (limit - s) * reach_length + 0.5 * skin;
+      const Rigid at = translated(q.o_from_piece_[p.t_slot], s * delta);
+      const GjkResult r = q.nodeGjkAt(p, at, settings, q.cacheOf(p));
+      if (r.status == GjkStatus::BeyondMaxDistance) return kInfinity;
+      if (s == 0.0) {  // a bound at the start: the children's entries start from it
+        p.bound = std::max(p.bound, r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound);
+        p.refined = true;
+      }
+      const std::pair<double, double> open = openInterval(r, s);
+      if (open.first > s) {
+        closed = true;
+        return s;
+      }
+      q.planes_.record(q.keyOf(p), at, r.normal, std::min(r.lower_bound, r.distance));
+      s = open.second;
+    }
+    return s;
   }
-  /// True when planes sampled in (lo, hi) cover it, at most `planes` of them.
-  bool coverGap(const NodePair& p, double lo, double hi, int planes) {
-    if (lo >= hi) return true;
-    if (planes <= 0) return false;
-    const double mid = 0.5 * (lo + hi);
-    const std::pair<double, double> open = openInterval(sampleAt(p, mid), mid);
-    if (open.first > mid) return false;  // not open at mid
-    const int left = (planes - 1) / 2;
-    return coverGap(p, lo, open.first, left) && coverGap(p, open.second, hi, planes - 1 - left);
-  }
-  GjkResult sampleAt(const NodePair& p, double s) {
-    const Rigid at = translated(q.o_from_piece_[p.t_slot], s * delta);
-    return q.nodeGjkAt(p, at, GjkSettings(), scratch_);
+  /// s pushed on by the planes found earlier at this rotation (PlaneMemo) open at it.
+  double knownPlanesReach(const NodePair& p, double s) const {
+    const Rigid& start = q.o_from_piece_[p.t_slot];
+    const PlaneMemo::Plane* planes = nullptr;
+    const int n = q.planes_.find(q.keyOf(p), start.rotation, planes);
+    // n passes take the planes in any order.
+    for (int pass = 0; pass < n && s < limit; ++pass) {
+      for (int i = 0; i < n && s < limit; ++i) {
+        const double gap = planes[i].offset + planes[i].normal.dot(start.translation);
+        const double closing = -planes[i].normal.dot(delta);  // per unit of s, forwards
+        const double at_s = gap - closing * s;
+        if (at_s <= skin) continue;
+        s = closing <= 0.0 ? kInfinity : s + (at_s - skin) / closing;
+      }
+    }
+    return s;
   }
   /// Where along the motion the separating plane of `r`, found at s, stays more than
   /// skin open; an empty interval (first > s) when it is not open at s.
@@ -98,16 +119,22 @@ struct GroupPairQuery::ToiPolicy {
     const double behind = closing >= 0.0 ? kInfinity : room / -closing;
     return {s - behind, s + ahead};
   }
-  bool visit(const NodePair& p) {
+  /// True for a leaf pair the caller skips (a contact it already holds).
+  bool skipped(const NodePair& p) const {
     const Slot& ts = q.t_slots_[p.t_slot];
     const Slot& os = q.o_slots_[p.o_slot];
-    const LeafPair leaves{ts.first_leaf + ts.data->hierarchy.nodes[p.t_node].polytope,
-                          os.first_leaf + os.data->hierarchy.nodes[p.o_node].polytope};
-    if (std::binary_search(skip.begin(), skip.end(), leaves)) return true;
-    NodePair again = p;  // the limit may have shrunk since p was admitted
-    if (!admits(again)) return true;
-    // Conservative advancement: the separating plane of the current closest points
-    // stays separating while the target moves towards it by less than the gap.
+    const HullBvhNode& t = ts.data->hierarchy.nodes[p.t_node];
+    const HullBvhNode& o = os.data->hierarchy.nodes[p.o_node];
+    if (skip.empty() || !t.leaf() || !o.leaf()) return false;
+    const LeafPair leaves{ts.first_leaf + t.polytope, os.first_leaf + o.polytope};
+    return std::binary_search(skip.begin(), skip.end(), leaves);
+  }
+  /// Conservative advancement of a leaf pair, from the start (its stops, and so the
+  /// answer, are those of every leaf pair's advancement); false when the limit
+  /// reached 0.
+  bool visit(const NodePair& p) {
+    // The separating plane of the current closest points stays separating while the
+    // target moves towards it by less than the gap.
     const Rigid& start = q.o_from_piece_[p.t_slot];
     double s = 0.0;
     for (int step = 0; step < kMaxAdvanceSteps && s < limit; ++step) {
@@ -132,6 +159,64 @@ struct GroupPairQuery::ToiPolicy {
   }
 };
 
+void GroupPairQuery::sweep(ToiPolicy& policy) {
+  std::vector<Timed>& heap = sweep_heap_;
+  heap.clear();
+  const auto later = [](const Timed& a, const Timed& b) { return a.when > b.when; };
+  const auto push = [&](double when, int steps, const NodePair& pair) {
+    heap.push_back({when, steps, pair});
+    std::push_heap(heap.begin(), heap.end(), later);
+  };
+  // A child's hulls lie within its parent's: it enters no earlier.
+  const auto offer = [&](double parent_when, const NodePair& pair) {
+    if (policy.skipped(pair) || !policy.sphereReaches(pair)) return;
+    const double when = std::max(parent_when, policy.entryByBound(pair.bound));
+    if (when < policy.limit) push(when, 0, pair);
+  };
+  for (int ts = 0; ts < static_cast<int>(t_slots_.size()); ++ts) {
+    for (int os = 0; os < static_cast<int>(o_slots_.size()); ++os) {
+      NodePair root;
+      root.t_slot = ts;
+      root.o_slot = os;
+      root.bound = std::max(0.0, sphereBound(root));
+      offer(0.0, root);
+    }
+  }
+  // Once the limit is at or before the earliest entry left, no pair left can lower it.
+  while (!heap.empty() && heap.front().when < policy.limit) {
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const Timed e = heap.back();
+    heap.pop_back();
+    NodePair p = e.pair;
+    bool closed = false;
+    const double when = policy.advance(p, e.when, 1, closed);
+    if (!closed && e.steps + 1 < kMaxNodeSteps) {
+      if (when < policy.limit) push(when, e.steps + 1, p);  // its turn comes later
+      continue;
+    }
+    ++counters_.node_pairs;
+    const HullBvhNode& tn = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
+    const HullBvhNode& on = o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node];
+    if (tn.leaf() && on.leaf()) {
+      if (!policy.visit(p)) break;
+      continue;
+    }
+    // runTraversal's split: a node without hull first, else the larger.
+    const bool split_t = tn.hasPolytope() != on.hasPolytope()
+                             ? !tn.hasPolytope()
+                             : on.leaf() || (!tn.leaf() && tn.radius >= on.radius);
+    const HullBvhNode& split = split_t ? tn : on;
+    for (const int child : {split.left, split.right}) {
+      NodePair c = p;
+      (split_t ? c.t_node : c.o_node) = child;
+      c.refined = false;
+      c.bound = std::max(p.bound, sphereBound(c));
+      offer(when, c);
+    }
+  }
+  heap.clear();
+}
+
 double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, double skin,
                                       const std::vector<LeafPair>& skip) {
   counters_ = TraversalCounters();
@@ -142,20 +227,24 @@ double GroupPairQuery::translationToi(const Rigid& o_from_t, const Vec3& delta, 
     return 1.0;
   }
   placeTargets(o_from_t);
-  ToiPolicy policy{*this, delta, reach_length, skin, skip, 1.0, SimplexCache()};
+  ToiPolicy policy{*this, delta, reach_length, skin, skip, 1.0};
   // A pair that can block starts within this reach. When contactsNear()'s pairs hold
   // every pair within it, advance only those, nearest first; a pair whose gap (less
   // the translation since) rules it out is pruned as the traversal would.
   const double reach = std::max(skin, reach_length + 0.5 * skin);
   if (!near_.covers(o_from_t, reach)) {
-    traverse(policy);
+    sweep(policy);
     return policy.limit;
   }
   near_.prepareBounds(o_from_t);
   for (std::size_t i = 0; i < near_.pairs().size(); ++i) {
     if (policy.prunes(near_.gapBound(i))) continue;
     const LeafContact& candidate = near_.pairs()[i];
-    if (!policy.visit(leafPair(candidate.t_leaf, candidate.o_leaf))) break;
+    NodePair p = leafPair(candidate.t_leaf, candidate.o_leaf);
+    if (policy.skipped(p) || !policy.sphereReaches(p)) continue;
+    bool closed = false;
+    if (policy.advance(p, 0.0, kMaxNodeSteps, closed) >= policy.limit) continue;
+    if (!policy.visit(p)) break;
   }
   return policy.limit;
 }

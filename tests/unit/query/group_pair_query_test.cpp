@@ -146,8 +146,10 @@ void expectSameContacts(std::vector<LeafContact> got, std::vector<LeafContact> w
 }
 
 void checkToi(GroupPairQuery& q, const BruteForce& brute, const Rigid& pose, const Vec3& delta,
-              double stop_gap, const std::vector<LeafPair>& skip, ToiTally& tally) {
+              double stop_gap, const std::vector<LeafPair>& skip, ToiTally& tally,
+              double* toi = nullptr) {
   const double s = q.translationToi(pose, delta, stop_gap, skip);
+  if (toi != nullptr) *toi = s;
   const double expected = brute.toi(pose, delta, stop_gap, skip);
   ++tally.cases;
   EXPECT_GE(s, expected - 1e-9);
@@ -319,6 +321,46 @@ TEST_F(GroupPairQueryTest, TranslationToiAlongTheContactMatchesAllLeafPairs) {
   }
   EXPECT_EQ(tally.cases, kToiPoses);
   expectTally(tally, "sideways toi", 1);  // some sideways motions meet the opponent
+}
+
+// A slide's sweeps: three in a row at one rotation, each from where the last stopped,
+// the first towards the elephant, the others in new directions. The separating planes
+// one sweep finds serve the next (PlaneMemo): each still equals all leaf pairs'
+// advancement. Halfway the opponent moves within its group towards the target and the
+// last slide's first sweep runs again: planes kept from before must not serve.
+TEST_F(GroupPairQueryTest, SweepsInARowAtOneRotationMatchAllLeafPairs) {
+  test::Rng rng(23);
+  const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
+  constexpr int kSlides = SC_TEST_SANITIZED ? 4 : 24;
+  ToiTally tally;
+  Rigid pose, last;  // last: the start of the last slide run
+  for (int c = 0; c < kSlides; ++c) {
+    SCOPED_TRACE(c);
+    if (c == kSlides / 2) {  // the elephant comes a tenth of the way to meet the target
+      o_parts_[0].group_from_model.translation = 0.1 * (last.translation - centre);
+      query_.bind(target_, opponent_);
+      pose = last;
+    } else {
+      pose = randomPose(rng, 1.2);
+    }
+    const BruteForce brute(query_);
+    if (brute.distance(pose) == 0.0) continue;
+    last = pose;
+    Rigid at = pose;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 delta = k == 0 ? Vec3(0.9 * (centre - at.translation))
+                                : Vec3(test::uniform(rng, 0.05, 0.5) * test::randomDirection(rng));
+      std::vector<LeafContact> near;  // skipped, as the proxy tracker skips its contacts
+      query_.contacts(at, 0.02, near);
+      std::vector<LeafPair> skip;
+      for (const LeafContact& lc : near) skip.push_back({lc.t_leaf, lc.o_leaf});
+      std::sort(skip.begin(), skip.end());
+      double s = 0.0;
+      ASSERT_NO_FATAL_FAILURE(checkToi(query_, brute, at, delta, kStopGap, skip, tally, &s));
+      at.translation += s * delta;
+    }
+  }
+  expectTally(tally, "sweeps in a row", tally.cases / 4);
 }
 
 TEST_F(GroupPairQueryTest, CoherenceSavesWorkButNotAccuracy) {

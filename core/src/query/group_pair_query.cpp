@@ -251,6 +251,24 @@ double GroupPairQuery::nodeLowerBound(const NodePair& p, double max_distance,
   return r.status == GjkStatus::Intersecting ? 0.0 : r.lower_bound;
 }
 
+std::array<NodePair, 2> GroupPairQuery::childrenOf(const NodePair& p) const {
+  const HullBvhNode& tn = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
+  const HullBvhNode& on = o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node];
+  // A node without hull goes first: only its children can tighten the bound.
+  const bool split_t = tn.hasPolytope() != on.hasPolytope()
+                           ? !tn.hasPolytope()
+                           : on.leaf() || (!tn.leaf() && tn.radius >= on.radius);
+  const HullBvhNode& split = split_t ? tn : on;
+  std::array<NodePair, 2> children{p, p};
+  (split_t ? children[0].t_node : children[0].o_node) = split.left;
+  (split_t ? children[1].t_node : children[1].o_node) = split.right;
+  for (NodePair& c : children) {
+    c.refined = false;
+    c.bound = std::max(p.bound, sphereBound(c));
+  }
+  return children;
+}
+
 LeafContact GroupPairQuery::evaluate(const NodePair& p, const Rigid& o_from_piece,
                                      double max_distance, bool& beyond, SimplexCache* cache) {
   ++counters_.leaf_gjk;

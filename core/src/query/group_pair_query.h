@@ -7,6 +7,7 @@
 // starts per node pair and the last closest leaf pair persist across calls.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -164,6 +165,9 @@ class GroupPairQuery {
   /// Places every target piece in the opponent frame for this query.
   void placeTargets(const Rigid& o_from_t);
   double sphereBound(const NodePair& p) const;
+  /// The two node pairs p splits into: a node without hull is split first, else the
+  /// larger; each bounded by p's bound and its spheres, unrefined.
+  std::array<NodePair, 2> childrenOf(const NodePair& p) const;
   /// Both nodes have a polytope (a leaf, or an inner node that keeps its hull), so
   /// GJK can bound the pair; otherwise its sphere bound is all there is.
   bool hullsOf(const NodePair& p) const {

@@ -201,18 +201,7 @@ void GroupPairQuery::sweep(ToiPolicy& policy) {
       if (!policy.visit(p)) break;
       continue;
     }
-    // runTraversal's split: a node without hull first, else the larger.
-    const bool split_t = tn.hasPolytope() != on.hasPolytope()
-                             ? !tn.hasPolytope()
-                             : on.leaf() || (!tn.leaf() && tn.radius >= on.radius);
-    const HullBvhNode& split = split_t ? tn : on;
-    for (const int child : {split.left, split.right}) {
-      NodePair c = p;
-      (split_t ? c.t_node : c.o_node) = child;
-      c.refined = false;
-      c.bound = std::max(p.bound, sphereBound(c));
-      offer(when, c);
-    }
+    for (const NodePair& c : childrenOf(p)) offer(when, c);
   }
   heap.clear();
 }

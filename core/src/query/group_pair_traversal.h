@@ -91,18 +91,7 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
         continue;
       }
     }
-    // A node without hull goes first: only its children can tighten the bound.
-    const bool split_t = tn.hasPolytope() != on.hasPolytope()
-                             ? !tn.hasPolytope()
-                             : on.leaf() || (!tn.leaf() && tn.radius >= on.radius);
-    const HullBvhNode& split = split_t ? tn : on;
-    for (const int child : {split.left, split.right}) {
-      NodePair c = p;
-      (split_t ? c.t_node : c.o_node) = child;
-      c.refined = false;
-      c.bound = std::max(p.bound, sphereBound(c));
-      offer(policy, heap, c);
-    }
+    for (const NodePair& c : childrenOf(p)) offer(policy, heap, c);
   }
   heap.clear();
   return true;

@@ -7,6 +7,7 @@
 // starts per node pair and the last closest leaf pair persist across calls.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -168,6 +169,25 @@ class GroupPairQuery {
   /// The two node pairs p splits into: a node without hull is split first, else the
   /// larger; each bounded by p's bound and its spheres, unrefined.
   std::array<NodePair, 2> childrenOf(const NodePair& p) const;
+  /// Calls f with the root pair of every target slot and opponent slot, bounded by
+  /// its spheres.
+  template <class F>
+  void forEachRoot(F f) const {
+    for (int ts = 0; ts < static_cast<int>(t_slots_.size()); ++ts) {
+      for (int os = 0; os < static_cast<int>(o_slots_.size()); ++os) {
+        NodePair root;
+        root.t_slot = ts;
+        root.o_slot = os;
+        root.bound = std::max(0.0, sphereBound(root));
+        f(root);
+      }
+    }
+  }
+  /// True when both nodes of p are leaves (a leaf pair, to visit).
+  bool leavesOf(const NodePair& p) const {
+    return t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node].leaf() &&
+           o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node].leaf();
+  }
   /// Both nodes have a polytope (a leaf, or an inner node that keeps its hull), so
   /// GJK can bound the pair; otherwise its sphere bound is all there is.
   bool hullsOf(const NodePair& p) const {

@@ -173,15 +173,7 @@ void GroupPairQuery::sweep(ToiPolicy& policy) {
     const double when = std::max(parent_when, policy.entryByBound(pair.bound));
     if (when < policy.limit) push(when, 0, pair);
   };
-  for (int ts = 0; ts < static_cast<int>(t_slots_.size()); ++ts) {
-    for (int os = 0; os < static_cast<int>(o_slots_.size()); ++os) {
-      NodePair root;
-      root.t_slot = ts;
-      root.o_slot = os;
-      root.bound = std::max(0.0, sphereBound(root));
-      offer(0.0, root);
-    }
-  }
+  forEachRoot([&](const NodePair& root) { offer(0.0, root); });
   // Once the limit is at or before the earliest entry left, no pair left can lower it.
   while (!heap.empty() && heap.front().when < policy.limit) {
     std::pop_heap(heap.begin(), heap.end(), later);
@@ -195,9 +187,7 @@ void GroupPairQuery::sweep(ToiPolicy& policy) {
       continue;
     }
     ++counters_.node_pairs;
-    const HullBvhNode& tn = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
-    const HullBvhNode& on = o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node];
-    if (tn.leaf() && on.leaf()) {
+    if (leavesOf(p)) {
       if (!policy.visit(p)) break;
       continue;
     }

@@ -44,15 +44,7 @@ void GroupPairQuery::traverse(Policy& policy) {
 template <class Policy>
 void GroupPairQuery::seedTraversal(Policy& policy, std::vector<NodePair>& heap) {
   heap.clear();
-  for (int ts = 0; ts < static_cast<int>(t_slots_.size()); ++ts) {
-    for (int os = 0; os < static_cast<int>(o_slots_.size()); ++os) {
-      NodePair root;
-      root.t_slot = ts;
-      root.o_slot = os;
-      root.bound = std::max(0.0, sphereBound(root));
-      offer(policy, heap, root);
-    }
-  }
+  forEachRoot([&](const NodePair& root) { offer(policy, heap, root); });
 }
 
 template <class Policy>
@@ -72,9 +64,7 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
       break;
     }
     ++counters_.node_pairs;
-    const HullBvhNode& tn = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
-    const HullBvhNode& on = o_slots_[p.o_slot].data->hierarchy.nodes[p.o_node];
-    if (tn.leaf() && on.leaf()) {
+    if (leavesOf(p)) {
       if (!policy.visit(p)) break;
       continue;
     }

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Instructions per PD update from `warm_jump --only=pd --callgrind-updates` run as
+"""Instructions per update of the carried tracker from `warm_jump --callgrind-updates`
+(any case; the PD case shown) run as
 
     valgrind --tool=callgrind --collect-atstart=no --callgrind-out-file=OUT \\
         build/bench/warm_jump --only=pd --runs=1 --callgrind-updates

@@ -102,12 +102,16 @@ struct Pair {
     tracker.update(target, opponent, sc::Directions{true, false}, settings, out);
     return out[0];
   }
-  /// A fresh tracker's distance, -1 when intersecting (no global depth: cheap).
-  double coldDistance(const sc::Rigid& pose) const {
+  /// A fresh tracker's result, not Ok when intersecting (no global depth: cheap).
+  sc::DirectedResult coldResult(const sc::Rigid& pose) const {
     Pair plain = *this;
     plain.settings.resolve_initial_intersection = false;
     sc::PairTracker tracker;
-    const sc::DirectedResult r = plain.update(tracker, pose);
+    return plain.update(tracker, pose);
+  }
+  /// A fresh tracker's distance, -1 when intersecting.
+  double coldDistance(const sc::Rigid& pose) const {
+    const sc::DirectedResult r = coldResult(pose);
     return r.code == sc::ErrorCode::Ok ? r.distance : -1.0;
   }
   /// Offset along u where the target, turned by q, is `gap` from the opponent: the
@@ -164,12 +168,8 @@ std::vector<sc::Rigid> makeCoherentPath(const Pair& pair, double radius) {
   spec.start_offset = 2.0 * radius;
   spec.jump_every = kJumpEvery;
   spec.jump = g_jump == kTeleport ? 2.0 : g_jump;
-  return sc_bench::coherentPath(spec, [&pair](const sc::Rigid& pose) {
-    Pair plain = pair;
-    plain.settings.resolve_initial_intersection = false;
-    sc::PairTracker tracker;
-    return plain.update(tracker, pose);
-  });
+  return sc_bench::coherentPath(spec,
+                                [&pair](const sc::Rigid& pose) { return pair.coldResult(pose); });
 }
 
 /// One update, timed; `teleport` resets the tracker first (in the time).

@@ -183,9 +183,7 @@ int slide(const ConvexPair& pair, const Mat3& rotation, const Vec3& goal_center,
     }
     // The travel left cuts the step, but never short of the contact's plane: the proxy
     // leaves the intersection its turn to the goal's rotation may have made.
-    const double short_by = p.contact ? p.b - p.n.dot(y) : 0.0;
-    const double rate = p.n.dot(delta);
-    const double exit = short_by <= 0.0 ? 0.0 : rate > short_by ? short_by / rate : 1.0;
+    const double exit = p.contact ? holdFraction(p.b - p.n.dot(y), p.n.dot(delta)) : 0.0;
     const double keep = std::max(travel.share(delta.norm()), exit);
     delta *= std::min(keep, 1.0);
     const double s = p.contact ? 1.0 : std::min(1.0, pair.advance(pose, delta, skin));

@@ -27,12 +27,8 @@ double slideMarginOf(const PairSettings& s) { return 2.0 * s.tolerance; }
 double rowsHoldFrom(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const VecX>& b, double skin,
                     const Vec3& y, const Vec3& delta) {
   double t = 0.0;
-  for (Eigen::Index i = 0; i < a.rows(); ++i) {
-    const double short_by = b[i] - skin - a.row(i).dot(y);
-    if (short_by <= 0.0) continue;
-    const double rate = a.row(i).dot(delta);
-    t = std::max(t, rate > short_by ? short_by / rate : 1.0);
-  }
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    t = std::max(t, holdFraction(b[i] - skin - a.row(i).dot(y), a.row(i).dot(delta)));
   return t;
 }
 

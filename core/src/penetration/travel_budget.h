@@ -21,4 +21,12 @@ struct TravelBudget {
   }
 };
 
+/// The least fraction of a step at which a linear row short by `short_by` at its
+/// start, and gaining `rate` over the whole step, holds: 0 when it holds already, 1
+/// when only the step's end is known to satisfy it.
+inline double holdFraction(double short_by, double rate) {
+  if (short_by <= 0.0) return 0.0;
+  return rate > short_by ? short_by / rate : 1.0;
+}
+
 }  // namespace sc::detail

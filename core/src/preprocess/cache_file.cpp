@@ -217,12 +217,17 @@ bool checkPolytope(Reader& r, const InputCounts& input) {
   return true;
 }
 
-/// Decodes the polytope record at `at`, which checkPolytope passed.
-void readPolytope(const std::uint8_t* at, PolytopeParts& p) {
+/// The 8-byte count at `at`, which it then passes.
+std::size_t takeCount(const std::uint8_t*& at) {
   std::uint64_t count = 0;
   std::memcpy(&count, at, sizeof(count));
   at += sizeof(count);
-  const auto nv = static_cast<std::size_t>(count);
+  return static_cast<std::size_t>(count);
+}
+
+/// Decodes the polytope record at `at`, which checkPolytope passed.
+void readPolytope(const std::uint8_t* at, PolytopeParts& p) {
+  const std::size_t nv = takeCount(at);
   p.vertices.resize(nv);
   p.original.resize(nv);
   for (std::size_t i = 0; i < nv; ++i, at += kVertexBytes) {
@@ -233,9 +238,7 @@ void readPolytope(const std::uint8_t* at, PolytopeParts& p) {
     p.vertices[i] = Vec3(xyz[0], xyz[1], xyz[2]);
     p.original[i] = original;
   }
-  std::memcpy(&count, at, sizeof(count));
-  at += sizeof(count);
-  const auto nf = static_cast<std::size_t>(count);
+  const std::size_t nf = takeCount(at);
   p.faces.resize(nf);
   p.face_source.resize(nf);
   for (std::size_t f = 0; f < nf; ++f, at += kFaceBytes) {

@@ -22,7 +22,8 @@
 // --callgrind-updates: under `valgrind --tool=callgrind --collect-atstart=no`, each
 // case's first run collects only the carried tracker's updates and dumps the count
 // after each one (one file per update: bench/callgrind_updates.py reads them), so
-// which updates are slow is known independently of the machine's load.
+// which updates are slow is known independently of the machine's load;
+// --callgrind-fresh counts the fresh tracker's updates instead (the same poses).
 #include <time.h>
 
 #include <algorithm>
@@ -65,6 +66,7 @@ constexpr double kStepAngle = 2e-4;  // radians per step of the orbit and of the
 int g_runs = 3;  // --runs=N: more runs, less of the machine's load in each step's least time
 bool g_coherent_path = false;      // --path=coherent: the distance case on mesh_distance's path
 bool g_callgrind_updates = false;  // --callgrind-updates: one callgrind dump per update
+bool g_callgrind_fresh = false;    // --callgrind-fresh: ... of the fresh tracker instead
 constexpr double kRatio = 1.2, kSlackUs = 20.0;
 constexpr double kPdP99Us = 200.0;  // PD update target (issue 19.3)
 
@@ -232,15 +234,16 @@ Outcome run(const Pair& pair, const std::vector<sc::Rigid>& path, bool penetrati
     for (std::size_t k = 0; k < path.size(); ++k) {
       sc::PairTracker fresh;
       const bool teleport = g_jump == kTeleport && isJump(k);
-      const bool counted = g_callgrind_updates && r == 0;
+      const bool counted = (g_callgrind_updates || g_callgrind_fresh) && r == 0;
+      const bool warm_counted = counted && !g_callgrind_fresh;
       sc::DirectedResult rw, rc;
       Sample w, c;
       if ((k + r) % 2 == 0) {
-        w = countedUpdate(pair, warm, path[k], rw, counted, teleport);
-        c = timed(pair, fresh, path[k], rc, false);
+        w = countedUpdate(pair, warm, path[k], rw, warm_counted, teleport);
+        c = countedUpdate(pair, fresh, path[k], rc, counted && !warm_counted);
       } else {
-        c = timed(pair, fresh, path[k], rc, false);
-        w = countedUpdate(pair, warm, path[k], rw, counted, teleport);
+        c = countedUpdate(pair, fresh, path[k], rc, counted && !warm_counted);
+        w = countedUpdate(pair, warm, path[k], rw, warm_counted, teleport);
       }
       o.warm[k] = {std::min(o.warm[k].wall_us, w.wall_us), std::min(o.warm[k].cpu_us, w.cpu_us)};
       o.cold[k] = {std::min(o.cold[k].wall_us, c.wall_us), std::min(o.cold[k].cpu_us, c.cpu_us)};
@@ -357,6 +360,7 @@ int main(int argc, char** argv) {
       g_seed = static_cast<unsigned>(std::strtoul(argv[i] + 7, nullptr, 10));
     if (std::strncmp(argv[i], "--jumps=", 8) == 0) jumps = parseJumps(argv[i] + 8);
     if (std::strcmp(argv[i], "--callgrind-updates") == 0) g_callgrind_updates = true;
+    if (std::strcmp(argv[i], "--callgrind-fresh") == 0) g_callgrind_fresh = true;
     if (std::strcmp(argv[i], "--path=coherent") == 0) g_coherent_path = true;
   }
   if (csv)

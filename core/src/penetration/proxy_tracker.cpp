@@ -99,7 +99,13 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
     const Rigid pose = poseAt(rotation, center, y);
     // Each iteration moves the proxy a little at one rotation: re-evaluate only the
     // pairs found within a margin while it moves less than that margin.
-    gatherContacts(query, pose, settings);
+    if (k == 0 && start_gap_ > settings.tolerance) {
+      contacts_.clear();
+      rows_current_ = false;
+    } else {
+      gatherContacts(query, pose, settings);
+    }
+    start_gap_ = -kInfinity;  // true of this pose only
     if (stretched && !clearOf(contacts_, 0.5 * skin)) {
       // Past its target no row held the stretch: back to the target, which they did.
       y = certified;
@@ -168,12 +174,12 @@ int ProxyTracker::slide(GroupPairQuery& query, const Mat3& rotation, const Vec3&
 }
 
 void ProxyTracker::reportApart(GroupPairQuery& query, const Rigid& goal,
-                               const PairSettings& settings, ProxyOutcome& out) {
+                               const PairSettings& settings, ProxyOutcome& out, bool sweep_next) {
   out.penetrating = false;
   out.contact_pose = goal;
   out.tpdv.setZero();
   out.rpdv.setZero();
-  if (!query.distance(goal, settings.max_distance, out.contact)) {
+  if (!query.distance(goal, settings.max_distance, out.contact, sweep_next)) {
     out.code = ErrorCode::NoResult;
     return;
   }
@@ -188,17 +194,18 @@ bool ProxyTracker::certifiedFree(GroupPairQuery& query, const Rigid& goal, const
   // The slide turns the proxy to the goal's rotation in place, then translates its
   // centre: the gap there is bounded by the last distance less that turn.
   const Vec3 from = proxy_ * center;
-  const double start_gap = query.distanceLowerBound(poseAt(goal.rotation, center, from));
+  const double start_gap = start_gap_;
   // Within the tolerance the slide gathers contacts and may not head straight.
   if (!(start_gap > settings.tolerance)) return false;
-  reportApart(query, goal, settings, out);
-  measured = true;
-  if (out.code != ErrorCode::Ok && out.code != ErrorCode::NoResult) return false;
-  const double end_gap = out.code == ErrorCode::Ok ? out.distance : settings.max_distance;
   // Every point moves |t| along the translation t, and the gap is 1-Lipschitz in it:
   // at fraction s it is at least max(start - s|t|, end - (1 - s)|t|) >=
   // (start + end - |t|) / 2, which must stay above the skin the sweep stops within.
   const double length = (goal * center - from).norm();
+  // A move longer than the start gap is likely swept next, from here to the goal.
+  reportApart(query, goal, settings, out, length > start_gap);
+  measured = true;
+  if (out.code != ErrorCode::Ok && out.code != ErrorCode::NoResult) return false;
+  const double end_gap = out.code == ErrorCode::Ok ? out.distance : settings.max_distance;
   return start_gap + end_gap - length > 2.0 * skinOf(settings);
 }
 
@@ -239,6 +246,9 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   previous_proxy_ = proxy_;
   touch_normal_.setZero();
   bool measured = false;
+  start_gap_ = penetrating_
+                   ? -kInfinity
+                   : query.distanceLowerBound(poseAt(goal.rotation, center, proxy_ * center));
   // The slide would gather its contacts anew (the first update after a long move):
   // read before the goal's measurement moves the last distance.
   const bool reentry =

@@ -75,8 +75,9 @@ class ProxyTracker {
     Vec3 normal;
     double offset;  ///< normal . y >= offset (zero skin)
   };
+  /// The distance at `goal` into `out`; `sweep_next`: GroupPairQuery::distance's.
   void reportApart(GroupPairQuery& query, const Rigid& goal, const PairSettings& settings,
-                   ProxyOutcome& out);
+                   ProxyOutcome& out, bool sweep_next = false);
   /// A free proxy's motion to `goal` (INPUT, NONE) that provably meets nothing within
   /// the skin: the distances at both ends exceed half its length by more than the
   /// skin. Measures the goal into `out` first (`measured`), as a fresh tracker does;
@@ -140,6 +141,11 @@ class ProxyTracker {
   bool rows_current_ = false;         ///< rows_ are those of contacts_ (both at rows_pose_)
   std::vector<LeafPair> skip_;        ///< the current contacts, sorted
   Vec3 touch_normal_ = Vec3::Zero();  ///< main contact's normal when the goal only touches
+  /// A free proxy turned to the goal's rotation in place, where the slide starts: a
+  /// lower bound of its gap, read before the goal's distance moves the query's bound
+  /// there. Above the tolerance the slide's first contacts are none (a jump's start,
+  /// whose gathering would be a rebuild far from the kept pairs); else -inf.
+  double start_gap_ = -kInfinity;
   TwistScratch twist_;                ///< Free and Mix work arrays
   TravelBudget travel_;
 };

@@ -292,6 +292,10 @@ GjkResult gjkDistance(const ConvexPolytope& a, const Rigid& frame_from_a, const 
   const double within2 =
       settings.within_distance >= 0.0 ? settings.within_distance * settings.within_distance : -1.0;
 
+  // The motion in A's frame, where the support points live.
+  const bool sweeping = std::isfinite(settings.motion_clearance);
+  const Vec3 motion_a =
+      sweeping ? Vec3(frame_from_a.rotation.transpose() * settings.motion) : Vec3::Zero();
   Simplex s = startSimplex(cache, cso, scale);
   double lower = 0.0;
   GjkStatus status = GjkStatus::NotConverged;
@@ -309,7 +313,11 @@ GjkResult gjkDistance(const ConvexPolytope& a, const Rigid& frame_from_a, const 
     const Vertex w = cso.support(-s.closest);
     const double vw = s.closest.dot(w.w);
     if (vw > 0.0) lower = std::max(lower, vw / std::sqrt(s.vv));
-    if (lower > settings.max_distance) {
+    // Every point x of A - B has x . v >= v . w: moved by part of the motion, at least
+    // that plus the motion's least (negative) share along v.
+    if (lower > settings.max_distance ||
+        (sweeping && vw + std::min(0.0, motion_a.dot(s.closest)) >
+                         settings.motion_clearance * std::sqrt(s.vv))) {
       status = GjkStatus::BeyondMaxDistance;
       break;
     }

@@ -31,6 +31,12 @@ struct GjkSettings {
   /// Stop once the distance is known to be at most this (a traversal that only asks
   /// whether two hulls are within a reach needs no more); negative: never.
   double within_distance = -1.0;
+  /// A's translation relative to B (common frame). With `motion_clearance` finite:
+  /// stop as BeyondMaxDistance, too, once a separating plane is found that keeps A
+  /// farther than that from B while it translates by any part of `motion` (a sweep
+  /// asks no more of a pair moving along its plane).
+  Vec3 motion = Vec3::Zero();
+  double motion_clearance = kInfinity;
   int max_iterations = 128;
 };
 

@@ -99,18 +99,25 @@ bool GroupPairQuery::distanceNear(const Rigid& o_from_t, double max_distance, Le
   if (!(covered > 0.0)) return false;
   near_.prepareBounds(o_from_t);
   double bound = found ? std::min(best.gap, max_distance) : max_distance;
+  // A pair whose hulls are closest on a virtual feature is not refined here, where
+  // the bound may still be loose (refine()'s cost grows with it): its hulls' gap
+  // bounds its faces' from below, and one nearer than the answer leaves it to the
+  // traversal, which measures it in order.
+  double deferred = kInfinity;
   for (std::size_t i = 0; i < near_.pairs().size(); ++i) {
     if (near_.gapBound(i) >= std::min(bound, covered)) continue;
     const LeafContact& kept = near_.pairs()[i];
     bool beyond = false;
-    const LeafContact c = exactLeafDistance(leafPair(kept.t_leaf, kept.o_leaf), bound, beyond);
+    const LeafContact c =
+        exactLeafDistance(leafPair(kept.t_leaf, kept.o_leaf), bound, beyond, true);
+    if (beyond && !c.intersecting && c.gap < bound) deferred = std::min(deferred, c.gap);
     if (beyond || (found && c.gap >= best.gap)) continue;
     best = c;
     found = true;
     bound = std::min(c.gap, max_distance);
     if (c.intersecting) break;
   }
-  return found && best.gap <= covered;
+  return found && best.gap <= std::min(covered, deferred);
 }
 
 void GroupPairQuery::evaluateNear(const Rigid& o_from_t, double threshold,

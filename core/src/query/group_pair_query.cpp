@@ -233,7 +233,11 @@ GjkResult GroupPairQuery::nodeGjk(const NodePair& p, double max_distance, double
   GjkSettings settings;
   settings.max_distance = max_distance;
   settings.within_distance = within_distance;
-  return nodeGjkAt(p, o_from_piece_[p.t_slot], settings, cacheOf(p));
+  const GjkResult r = nodeGjkAt(p, o_from_piece_[p.t_slot], settings, cacheOf(p));
+  if (record_planes_ && r.status == GjkStatus::Separated)  // a plane for the sweep next
+    planes_.record(keyOf(p), o_from_piece_[p.t_slot], r.normal,
+                   std::min(r.lower_bound, r.distance));
+  return r;
 }
 
 GjkResult GroupPairQuery::nodeGjkAt(const NodePair& p, const Rigid& o_from_piece,
@@ -326,13 +330,29 @@ bool GroupPairQuery::refine(const NodePair& p, const Rigid& o_from_piece, double
   const ConvexPolytope& po = polytopeOf(os, p.o_node);
   placeRealFaces(pt, o_from_piece, faces_t_);
   placeRealFaces(po, os.group_from_piece, faces_o_);
+  // Along the hulls' normal n every point of the target's faces lies at least h (the
+  // hulls' gap) beyond every point of the opponent's, and a face pair is no nearer
+  // than its faces' extents along n are apart: sorted by that extent (the target's
+  // least, the opponent's greatest), the pairs that can beat the bound are a few at
+  // the head of each list, measured first. Real faces close to their hulls (the
+  // usual case: a virtual feature grazed) leave almost no pair to measure.
+  const Vec3& n = c.normal;
+  for (PlacedFace& f : faces_t_)
+    f.key = std::min({n.dot(f.corners[0]), n.dot(f.corners[1]), n.dot(f.corners[2])});
+  for (PlacedFace& f : faces_o_)
+    f.key = -std::max({n.dot(f.corners[0]), n.dot(f.corners[1]), n.dot(f.corners[2])});
+  const auto byKey = [](const PlacedFace& a, const PlacedFace& b) { return a.key < b.key; };
+  std::sort(faces_t_.begin(), faces_t_.end(), byKey);
+  std::sort(faces_o_.begin(), faces_o_.end(), byKey);
   double best = bound;
   int best_t = -1, best_o = -1;
   TriangleDistance best_d;
   for (int i = 0; i < static_cast<int>(faces_t_.size()); ++i) {
     const PlacedFace& ft = faces_t_[i];
+    if (faces_o_.empty() || ft.key + faces_o_.front().key >= best) break;
     for (int j = 0; j < static_cast<int>(faces_o_.size()); ++j) {
       const PlacedFace& fo = faces_o_[j];
+      if (ft.key + fo.key >= best) break;
       if ((ft.center - fo.center).norm() - ft.radius - fo.radius >= best) continue;
       const TriangleDistance d = triangleDistance(ft.corners, fo.corners);
       if (d.distance < best) {
@@ -406,7 +426,19 @@ struct GroupPairQuery::DistancePolicy {
     const int o_leaf = os.first_leaf + os.data->hierarchy.nodes[p.o_node].polytope;
     if (t_leaf == q.seed_.t_leaf && o_leaf == q.seed_.o_leaf) return true;  // done first
     bool beyond = false;
-    const LeafContact c = q.exactLeafDistance(p, reach(), beyond);
+    // A pair whose hulls are closest on a virtual feature measures its real faces, at
+    // a cost that grows with the bound it is given: it goes back in the queue at its
+    // hulls' gap, a lower bound of its faces', and is measured when no pair is nearer
+    // (with the bound the traversal has by then: often none is needed).
+    const LeafContact c = q.exactLeafDistance(p, reach(), beyond, !p.refined);
+    const bool deferred = beyond && !p.refined && !c.intersecting && c.gap < reach();
+    if (deferred) {
+      NodePair later = p;
+      later.bound = std::max(p.bound, c.gap);
+      later.refined = true;
+      q.heap_.push_back(later);
+      std::push_heap(q.heap_.begin(), q.heap_.end(), Farther());
+    }
     if (!beyond) offer(c);
     return !(found && best.intersecting);
   }
@@ -429,7 +461,8 @@ double GroupPairQuery::seedBound(const Rigid& o_from_t, double max_distance) con
   return std::min(max_distance, last + displacementBound(known_pose_, o_from_t));
 }
 
-bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafContact& best) {
+bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafContact& best,
+                              bool sweep_next) {
   counters_ = TraversalCounters();
   placeTargets(o_from_t);
   DistancePolicy policy{*this, max_distance, best};
@@ -451,7 +484,9 @@ bool GroupPairQuery::distance(const Rigid& o_from_t, double max_distance, LeafCo
   }
   const bool done = (policy.found && best.intersecting) ||
                     distanceNear(o_from_t, max_distance, best, policy.found);
+  record_planes_ = sweep_next;
   if (!done) traverse(policy);
+  record_planes_ = false;
   if (policy.found) seed_ = {best.t_leaf, best.o_leaf};
   known_ = true;
   known_pose_ = o_from_t;

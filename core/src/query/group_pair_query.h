@@ -58,7 +58,10 @@ class GroupPairQuery {
   /// solid by the decomposition's tolerance) it is measured on its real triangles.
   /// Seeded with the last call's closest pair; answered from contactsNear()'s kept
   /// pairs, without a traversal, when they cover the pose up to the distance found.
-  bool distance(const Rigid& o_from_t, double max_distance, LeafContact& best);
+  /// `sweep_next`: a sweep at this rotation is likely next (a long move's end): the
+  /// separating planes the traversal finds are kept for it (PlaneMemo).
+  bool distance(const Rigid& o_from_t, double max_distance, LeafContact& best,
+                bool sweep_next = false);
 
   /// Pairs a contacts query gathers at most: two overlapping 10k-triangle meshes have
   /// some 10^8 leaf pairs within a body's size, 13 GB of them. Beyond it a query stops
@@ -144,7 +147,8 @@ class GroupPairQuery {
     Vec3 corners[3];
     Vec3 center;
     double radius = 0.0;
-    int face = -1;  ///< index into the leaf's faces
+    int face = -1;     ///< index into the leaf's faces
+    double key = 0.0;  ///< refine()'s order: the face's extent along the hulls' normal
   };
   struct DistancePolicy;
   struct ContactsPolicy;
@@ -288,6 +292,7 @@ class GroupPairQuery {
     NodePair pair;
   };
   std::vector<Timed> sweep_heap_;
+  bool record_planes_ = false;  ///< nodeGjk() keeps its planes: distance(sweep_next)
   LeafPair seed_;  ///< closest leaf pair of the last distance(), or -1s
   /// The last distance(): every leaf pair was at least known_gap_ apart at known_pose_.
   bool known_ = false;

@@ -75,6 +75,10 @@ struct GroupPairQuery::ToiPolicy {
       if (s >= limit) break;
       GjkSettings settings;  // beyond this it cannot come within skin / 2 in time
       settings.max_distance = (limit - s) * reach_length + 0.5 * skin;
+      // Nor along a plane that keeps it beyond the skin, where no leaf pair's advance
+      // (visit) would stop, while it moves by what is left of the motion.
+      settings.motion = (limit - s) * delta;
+      settings.motion_clearance = skin;
       const Rigid at = translated(q.o_from_piece_[p.t_slot], s * delta);
       const GjkResult r = q.nodeGjkAt(p, at, settings, q.cacheOf(p));
       if (r.status == GjkStatus::BeyondMaxDistance) return kInfinity;

@@ -142,6 +142,33 @@ TEST_F(GjkCubes, WithinDistanceStopsEarlyWithBothBounds) {
   EXPECT_NEAR(exact.distance, full.distance, kTol);
 }
 
+// A sweep asks whether A stays clear of B while it translates: a separating plane
+// that keeps it so ends the run early, whatever the distance.
+TEST_F(GjkCubes, MotionAlongTheSeparatingPlaneStopsEarlyWithAValidLowerBound) {
+  const Rigid b = at(Vec3(3, 0.5, 0.2));  // faces one apart along x
+  const GjkResult full = run(at(Vec3::Zero()), b);
+  GjkSettings settings;
+  settings.motion_clearance = 0.5;
+  for (const Vec3& motion : {Vec3(0, 10, 0), Vec3(0.3, 5, -5), Vec3(-2, 0, 0)}) {
+    settings.motion = motion;  // along the faces, or closing by 0.3, or opening
+    const GjkResult r = run(at(Vec3::Zero()), b, settings);
+    EXPECT_EQ(r.status, GjkStatus::BeyondMaxDistance) << motion.transpose();
+    EXPECT_LE(r.iterations, full.iterations);
+    EXPECT_LE(r.lower_bound, 1.0 + kTol);
+  }
+  // Closing by 0.8 of the gap of 1 leaves 0.2 < 0.5: GJK runs to the exact distance.
+  settings.motion = Vec3(0.8, 1, 0);
+  const GjkResult closing = run(at(Vec3::Zero()), b, settings);
+  EXPECT_EQ(closing.status, GjkStatus::Separated);
+  EXPECT_NEAR(closing.distance, 1.0, kTol);
+  // The motion is A's in the common frame: A turned, the same answer.
+  const Rigid turned = pose(about(Vec3(0, 0, 1), 90), Vec3::Zero());
+  settings.motion = Vec3(0, 10, 0);
+  EXPECT_EQ(run(turned, b, settings).status, GjkStatus::BeyondMaxDistance);
+  settings.motion = Vec3(0.8, 0, 0);
+  EXPECT_EQ(run(turned, b, settings).status, GjkStatus::Separated);
+}
+
 TEST_F(GjkCubes, FarApartPairStopsAfterOneIterationBeyondMaxDistance) {
   GjkSettings settings;
   settings.max_distance = 1.0;

@@ -363,6 +363,32 @@ TEST_F(GroupPairQueryTest, SweepsInARowAtOneRotationMatchAllLeafPairs) {
   expectTally(tally, "sweeps in a row", tally.cases / 4);
 }
 
+// A long move's end is measured first (a fresh tracker's work), its traversal keeping
+// its separating planes at the end's rotation (distance's sweep_next): the sweep from
+// the start then relies on them and still stops where every leaf pair does.
+TEST_F(GroupPairQueryTest, SweepAfterTheEndsDistanceKeptItsPlanesMatchesAllLeafPairs) {
+  test::Rng rng(29);
+  const BruteForce brute(query_);
+  const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
+  ToiTally tally;
+  for (int c = 0; c < kToiPoses; ++c) {
+    SCOPED_TRACE(c);
+    const Rigid start = randomPose(rng, 1.2);
+    if (brute.distance(start) == 0.0) continue;
+    // Past the elephant's centre, or sideways: many ends free, many paths blocked.
+    const Vec3 to_centre = centre - start.translation;
+    const Vec3 delta =
+        c % 2 == 0
+            ? Vec3(test::uniform(rng, 0.5, 2.0) * to_centre + 0.3 * test::randomDirection(rng))
+            : Vec3(0.8 * to_centre.norm() *
+                   to_centre.cross(test::randomDirection(rng)).normalized());
+    LeafContact end;
+    query_.distance({start.rotation, start.translation + delta}, kInfinity, end, true);
+    ASSERT_NO_FATAL_FAILURE(checkToi(query_, brute, start, delta, kStopGap, {}, tally));
+  }
+  expectTally(tally, "sweeps after the end's distance", tally.cases / 4);
+}
+
 TEST_F(GroupPairQueryTest, CoherenceSavesWorkButNotAccuracy) {
   GroupPairQuery warm;
   warm.bind(target_, opponent_);
@@ -750,6 +776,47 @@ TEST_F(GroupPairQueryTest, AfterAJumpTheSeedIsRefinedOnlyAsAFreshQueryWould) {
       "[ group pair query ] %d jumps between elephants: leaf pairs refined %d carried, "
       "%d fresh\n",
       jumps, refined_warm, refined_fresh);
+}
+
+// A leaf pair whose hulls are closest on a virtual feature is measured on its real
+// triangles only when no pair is nearer than its hulls: refined pairs never number
+// more than the leaf pairs whose hulls are nearer than the answer (a fresh query that
+// met such a pair first used to refine it against no bound at all).
+TEST_F(GroupPairQueryTest, DistanceRefinesOnlyPairsWhoseHullsAreWithinTheAnswer) {
+  Part target_part{closed_.get(), Rigid(), 7};
+  const GroupView target{&target_part, 1, Placement()};
+  GroupPairQuery probe;
+  probe.bind(target, opponent_);
+  const BruteForce brute(probe);
+  const Vec3 centre = 0.5 * (closed_->bounds().min + closed_->bounds().max);
+  const double size = (closed_->bounds().max - closed_->bounds().min).norm();
+  test::Rng rng(71);
+  int poses = 0, refined = 0;
+  for (int c = 0; c < (SC_TEST_SANITIZED ? 4 : 16); ++c) {
+    SCOPED_TRACE(c);
+    // A turned elephant beside the other, a few hundredths of its size apart.
+    const Mat3 q = test::randomRotation(rng).toRotationMatrix();
+    const Vec3 u = test::randomDirection(rng);
+    Rigid pose{q, centre - q * centre};
+    for (double s = 0.3 * size; s < 2.0 * size; s += 0.02 * size) {
+      pose.translation = centre + s * u - q * centre;
+      if (!probe.intersects(pose)) break;
+    }
+    GroupPairQuery fresh;
+    fresh.bind(target, opponent_);
+    LeafContact best;
+    ASSERT_TRUE(fresh.distance(pose, kInfinity, best));
+    const std::vector<double> gaps = brute.gaps(pose);
+    // Hulls strictly nearer than the answer: the pairs that had to be refined.
+    const long within = std::count_if(gaps.begin(), gaps.end(), [&](double g) {
+      return g < best.gap - 1e-12 * (1.0 + best.gap);
+    });
+    EXPECT_LE(fresh.counters().refined, within);
+    refined += fresh.counters().refined;
+    ++poses;
+  }
+  std::printf("[ group pair query ] %d fresh distances beside an elephant: %d pairs refined\n",
+              poses, refined);
 }
 
 // A drifting, slowly turning target (a body pushed along a surface): the kept pairs

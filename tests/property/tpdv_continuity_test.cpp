@@ -21,6 +21,7 @@
 #include "sc.h"
 #include "smartcollision/collision.h"
 #include "support/brute_force.h"
+#include "support/sc_results.h"
 #include "support/shapes.h"
 #include "support/test_support.h"
 
@@ -195,14 +196,7 @@ TEST(TpdvContinuity, ProxyTravelRatioOutOfRangeIsRefusedAndChangesNothing) {
   ASSERT_EQ(out[0].code, ErrorCode::Ok);
   EXPECT_NEAR(out[0].distance, 0.9, 1e-12);
   SCSceneManager scene(SC_SCENE_MANAGER_CLOSED_POLYHEDRA);
-  double value = 0.0;
-  ASSERT_EQ(scene.GetAttributeDouble(SC_SCENE_MANAGER_PROXY_TRAVEL_RATIO, &value), SC_NO_ERROR);
-  EXPECT_EQ(value, kInfinity);
-  EXPECT_EQ(scene.SetAttributeDouble(SC_SCENE_MANAGER_PROXY_TRAVEL_RATIO, 0.5),
-            SC_ERROR_INVALID_ARGUMENT);
-  ASSERT_EQ(scene.SetAttributeDouble(SC_SCENE_MANAGER_PROXY_TRAVEL_RATIO, 2.0), SC_NO_ERROR);
-  ASSERT_EQ(scene.GetAttributeDouble(SC_SCENE_MANAGER_PROXY_TRAVEL_RATIO, &value), SC_NO_ERROR);
-  EXPECT_EQ(value, 2.0);
+  expectDoubleAttribute(scene, SC_SCENE_MANAGER_PROXY_TRAVEL_RATIO, kInfinity, 0.5, 2.0);
 }
 
 }  // namespace

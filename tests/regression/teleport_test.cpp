@@ -16,6 +16,7 @@
 #include "sc.h"
 #include "smartcollision/collision.h"
 #include "smartcollision/scene.h"
+#include "support/sc_results.h"
 #include "support/shapes.h"
 
 namespace sc::test {
@@ -189,14 +190,8 @@ TEST(Teleport, ScApiInactiveThenActiveResetsEveryDirection) {
   ASSERT_EQ(scene.SetActivityGroup(0, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
   ASSERT_NO_FATAL_FAILURE(distances(4.0, 1e-12));
   // Or the teleport distance: out of range refused, then the jump of 8 back is one.
-  double value = 0.0;
-  ASSERT_EQ(scene.GetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, &value), SC_NO_ERROR);
-  EXPECT_EQ(value, kInfinity);
-  EXPECT_EQ(scene.SetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, 0.0),
-            SC_ERROR_INVALID_ARGUMENT);
-  ASSERT_EQ(scene.SetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, 7.9), SC_NO_ERROR);
-  ASSERT_EQ(scene.GetAttributeDouble(SC_SCENE_MANAGER_TELEPORT_DISTANCE, &value), SC_NO_ERROR);
-  EXPECT_EQ(value, 7.9);
+  ASSERT_NO_FATAL_FAILURE(
+      expectDoubleAttribute(scene, SC_SCENE_MANAGER_TELEPORT_DISTANCE, kInfinity, 0.0, 7.9));
   ASSERT_EQ(scene.SetTransformation(0, SC_POSITION_WORLD_CENTER, start), SC_NO_ERROR);
   ASSERT_NO_FATAL_FAILURE(distances(2.0, 1e-12));
 }

@@ -58,4 +58,17 @@ void forEachOkDirection(SCSceneManager& scene, Fn fn) {
   }
 }
 
+/// A double attribute of `scene`: `initial` read first, `bad` refused, `good` set and
+/// read back.
+inline void expectDoubleAttribute(SCSceneManager& scene, SCenum attribute, double initial,
+                                  double bad, double good) {
+  double value = 0.0;
+  ASSERT_EQ(scene.GetAttributeDouble(attribute, &value), SC_NO_ERROR);
+  EXPECT_EQ(value, initial);
+  EXPECT_EQ(scene.SetAttributeDouble(attribute, bad), SC_ERROR_INVALID_ARGUMENT);
+  ASSERT_EQ(scene.SetAttributeDouble(attribute, good), SC_NO_ERROR);
+  ASSERT_EQ(scene.GetAttributeDouble(attribute, &value), SC_NO_ERROR);
+  EXPECT_EQ(value, good);
+}
+
 }  // namespace sc::test

@@ -246,14 +246,12 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   previous_proxy_ = proxy_;
   touch_normal_.setZero();
   bool measured = false;
-  start_gap_ = penetrating_
-                   ? -kInfinity
-                   : query.distanceLowerBound(poseAt(goal.rotation, center, proxy_ * center));
-  // The slide would gather its contacts anew (the first update after a long move):
-  // read before the goal's measurement moves the last distance.
-  const bool reentry =
-      !penetrating_ &&
-      !query.nearReaches(poseAt(goal.rotation, center, proxy_ * center), settings.tolerance);
+  // Both read where the slide starts (the proxy turned to the goal's rotation in
+  // place), before the goal's measurement moves the last distance: the gap there, and
+  // whether the slide would gather its contacts anew (the first update after a long move).
+  const Rigid turned = poseAt(goal.rotation, center, proxy_ * center);
+  start_gap_ = penetrating_ ? -kInfinity : query.distanceLowerBound(turned);
+  const bool reentry = !penetrating_ && !query.nearReaches(turned, settings.tolerance);
   if (!penetrating_ && (certifiedFree(query, goal, center, settings, out, measured) ||
                         (reentry && sweptFree(query, goal, center, settings, out, measured)))) {
     proxy_ = goal;  // where the slide's one unobstructed sweep would have put it

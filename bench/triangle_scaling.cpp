@@ -2,9 +2,9 @@
 // How query cost grows with the model: time per coherent distance query (ours and
 // FCL's, same poses), per dynamic penetration-depth update (ours), and preprocessing
 // time, against the triangle count. Series: an icosphere (convex) and CGAL's knot1
-// (non-convex) subdivided 1 -> 4 per level, CGAL models at their own resolution and
-// two tori (40k and 160k triangles);
-// every model against a copy of itself, at unit size.
+// (non-convex) subdivided 1 -> 4 per level (the knot to 1.6M triangles when
+// --max-triangles allows), CGAL models at their own resolution and two tori (40k and
+// 160k triangles); every model against a copy of itself, at unit size.
 // Usage: triangle_scaling [--csv FILE] [--max-triangles N] [--steps N] [--models SUBSTRING]
 // (--models: only the models whose name contains SUBSTRING, e.g. torus)
 // Preprocessing alone, 10k to 2M triangles (a closed non-convex torus series, the
@@ -517,7 +517,7 @@ std::vector<std::pair<Row, sc::MeshData>> models(int max_triangles) {
     add("torus (soup)", "torus-soup-" + size, torus, sc::ModelKind::TriangleSoup);
   }
   sc::MeshData knot = sc_bench::loadOff("knot1");
-  for (int level = 0; level <= 3 && !knot.triangles.empty(); ++level) {
+  for (int level = 0; level <= 4 && !knot.triangles.empty(); ++level) {
     add("knot1 subdivided (non-convex)", "knot1-" + std::to_string(level), knot);
     knot = subdivide(knot, false);
   }

@@ -56,9 +56,12 @@ void growCluster(const std::vector<RowCandidate>& candidates, int seed, int labe
   Vec3 normal_sum = Vec3::Zero();
   bool all_exact = true;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    // Corners of a convex piece form one support polygon however wide.
-    const bool far = !(s.corner && candidates[i].corner) &&
-                     (candidates[i].on_b - s.on_b).squaredNorm() > radius * radius;
+    // Corners of a convex piece form one support polygon however wide, and so do the
+    // regions measured against one convex body: its surface lies between them, where
+    // split patches made a body on a few feet rock from one patch to the other.
+    const bool one_support = (s.corner && candidates[i].corner) ||
+                             (s.convex_body >= 0 && s.convex_body == candidates[i].convex_body);
+    const bool far = !one_support && (candidates[i].on_b - s.on_b).squaredNorm() > radius * radius;
     if (labels[i] >= 0 || candidates[i].normal.dot(s.normal) < kClusterCos || far) continue;
     labels[i] = label;
     const Vec3& p = candidates[i].on_b;

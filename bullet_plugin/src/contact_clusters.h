@@ -20,6 +20,9 @@ struct RowCandidate {
   double separation = 0.0;
   bool exact = false;  ///< a corner of a convex piece (a stable vertex), not a leaf contact
   bool corner = false;  ///< a corner of a convex piece, exact or on a face's plane
+  /// The body (0 or 1, the manifold's order) the candidate was measured against when
+  /// that body is one convex piece, else -1.
+  int convex_body = -1;
 };
 
 /// Patches per pair, rows per patch: a patch of corners keeps them (up to
@@ -41,7 +44,9 @@ struct ContactCluster {
 /// the first and takes every candidate whose normal is within kClusterCos of its own
 /// and whose point lies within `radius` of its point (two regions of one overlap with
 /// close normals are two patches: rows spread over both would stand between them;
-/// the corners of a convex piece, its support polygon, stay one patch),
+/// the corners of a convex piece, its support polygon, stay one patch, and so do
+/// regions on one convex body, whose surface spans the space between them: the feet
+/// of a body standing on a box),
 /// the deepest of the rest seeds the next, and so on. Candidates left when all patches
 /// are taken are dropped; returns how many. `labels` is scratch (one per candidate);
 /// allocation-free once the vectors have their capacity.

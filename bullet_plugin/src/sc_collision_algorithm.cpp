@@ -646,14 +646,16 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
       gatherPoints(dir, sides[dir], sides[1 - dir], shifts[dir] - shifts[1 - dir], threshold,
                    query.tolerance, state);
     const bool target_is_0 = (swapped ? 1 - dir : dir) == 0;  // in the result's order
+    const int convex_body = wholeConvex(sides[1 - dir]) ? (target_is_0 ? 1 : 0) : -1;
     for (const detail::RowPoint& p : points_) {
       if (!(p.separation < row_threshold)) continue;
       // Bullet's frame: the normal from the result's body 1 to its body 0, the point
       // on body 1.
-      candidates_.push_back(
-          target_is_0 ? detail::RowCandidate{p.point - p.separation * p.normal, p.normal,
-                                             p.separation, p.exact, p.corner}
-                      : detail::RowCandidate{p.point, -p.normal, p.separation, p.exact, p.corner});
+      candidates_.push_back(target_is_0
+                                ? detail::RowCandidate{p.point - p.separation * p.normal, p.normal,
+                                                       p.separation, p.exact, p.corner, convex_body}
+                                : detail::RowCandidate{p.point, -p.normal, p.separation, p.exact,
+                                                       p.corner, convex_body});
     }
   }
   // A patch spans half the smaller body: two regions of one overlap (a torus across

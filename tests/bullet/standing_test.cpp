@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+// Bodies on a few small feet come to rest: four CGAL cows (0.5 m, 5,804 triangles)
+// dropped 1 cm onto the ground at 60 and 240 Hz, in both contact models. A landing
+// that the rows turn into rocking (a foot pushed where it does not touch, depth
+// recovered with a lever arm) shows here as a cow that walks, keeps rocking or falls.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "bullet_world.h"
+#include "support/shapes.h"
+
+namespace sc::test {
+namespace {
+
+struct Standing {
+  double drift = 0.0;      ///< largest horizontal distance of a centre from its spawn [m]
+  double tilt = 0.0;       ///< largest turn of a cow from its spawn orientation [rad]
+  double rms_speed = 0.0;  ///< RMS speed of the centres over the last second [m/s]
+};
+
+/// Drops four cows 1 cm onto the ground, side by side, and watches them for `seconds`.
+Standing dropCows(bullet::ContactModel model, double hz,
+                  const std::shared_ptr<bullet::ScBulletShape>& cow, double seconds) {
+  BulletWorld w(model, -9.81, hz);
+  w.addGround();
+  const btTransform& mesh_from_shape = cow->meshFromShape();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const btVector3& v : cow->vertices())
+    lowest = std::min(lowest, double((mesh_from_shape * v).y()));
+  // Each cow upright as modelled (its mesh frame axis-aligned), feet 1 cm up.
+  std::vector<btRigidBody*> cows;
+  std::vector<btTransform> spawn;
+  for (int i = 0; i < 4; ++i) {
+    const btVector3 at(btScalar(0.75 * (i % 2)), btScalar(0.01 - lowest), btScalar(0.5 * (i / 2)));
+    cows.push_back(
+        w.addBody(cow, 1.0, at + mesh_from_shape.getOrigin(), mesh_from_shape.getRotation()));
+    spawn.push_back(cows.back()->getWorldTransform());
+  }
+  Standing s;
+  const int steps = static_cast<int>(std::lround(seconds * hz));
+  const int last_second = static_cast<int>(std::lround(hz));
+  double sum_v2 = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    w.step();
+    for (std::size_t i = 0; i < cows.size(); ++i) {
+      const btTransform& t = cows[i]->getWorldTransform();
+      const btVector3 d = t.getOrigin() - spawn[i].getOrigin();
+      s.drift = std::max(s.drift, std::hypot(double(d.x()), double(d.z())));
+      const btQuaternion turn = t.getRotation() * spawn[i].getRotation().inverse();
+      s.tilt = std::max(s.tilt, double(turn.getAngle() > SIMD_PI ? 2 * SIMD_PI - turn.getAngle()
+                                                                 : turn.getAngle()));
+      if (k >= steps - last_second) sum_v2 += double(cows[i]->getLinearVelocity().length2());
+    }
+  }
+  s.rms_speed = std::sqrt(sum_v2 / double(last_second * cows.size()));
+  return s;
+}
+
+class CowsOnTheGround : public ::testing::TestWithParam<std::tuple<bullet::ContactModel, int>> {};
+
+// Bounds: the landing rocks a cow by a few millimetres and hundredths of a radian; it
+// settles well within the 10 s (at rest its centre moves by micrometres per second).
+TEST_P(CowsOnTheGround, SettleWithoutRockingOrWalking) {
+  const bullet::ContactModel model = std::get<0>(GetParam());
+  const int hz = std::get<1>(GetParam());
+  if (SC_TEST_SANITIZED && hz > 60) GTEST_SKIP() << "the 240 Hz runs are in the Release pass only";
+  const MeshData mesh = scaledOff("cow.off", 0.5);
+  ASSERT_FALSE(mesh.triangles.empty()) << "cow.off missing from " SC_MESH_DIR;
+  auto cow = bullet::ScBulletShape::create(ModelKind::ClosedPolyhedron, mesh);
+  ASSERT_TRUE(cow.ok()) << cow.status().message();
+  const Standing s = dropCows(model, hz, cow.value(), 10.0);
+  std::printf("[cows %s %d Hz] drift %.2f mm, tilt %.3f rad, rms speed (last second) %.2e m/s\n",
+              model == bullet::ContactModel::Potential ? "potential" : "manifold", hz,
+              1e3 * s.drift, s.tilt, s.rms_speed);
+  EXPECT_LT(s.drift, 0.015);
+  EXPECT_LT(s.tilt, 0.1);
+  EXPECT_LT(s.rms_speed, 1e-3);
+}
+
+std::string cowCaseName(
+    const ::testing::TestParamInfo<std::tuple<bullet::ContactModel, int>>& info) {
+  const bool potential = std::get<0>(info.param) == bullet::ContactModel::Potential;
+  return std::string(potential ? "Potential" : "Manifold") + "At" +
+         std::to_string(std::get<1>(info.param)) + "Hz";
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, CowsOnTheGround,
+                         ::testing::Combine(bothContactModels(), ::testing::Values(60, 240)),
+                         cowCaseName);
+
+}  // namespace
+}  // namespace sc::test

@@ -47,10 +47,12 @@ struct ContactCluster {
 /// the corners of a convex piece, its support polygon, stay one patch, and so do
 /// regions on one convex body, whose surface spans the space between them: the feet
 /// of a body standing on a box),
-/// the deepest of the rest seeds the next, and so on. Candidates left when all patches
+/// the deepest of the rest seeds the next, and so on. A patch's depth weighs its
+/// candidates by exp(-(height above its deepest) / `depth_scale`) (the contact
+/// tolerance, > 0). Candidates left when all patches
 /// are taken are dropped; returns how many. `labels` is scratch (one per candidate);
 /// allocation-free once the vectors have their capacity.
-int buildClusters(const std::vector<RowCandidate>& candidates, double radius,
+int buildClusters(const std::vector<RowCandidate>& candidates, double radius, double depth_scale,
                   std::vector<int>& labels, std::vector<ContactCluster>& clusters);
 
 }  // namespace sc::bullet::detail

@@ -661,7 +661,8 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   // A patch spans half the smaller body: two regions of one overlap (a torus across
   // another touches it twice, often with close normals) keep rows of their own.
   const double patch_radius = 0.5 * std::min(reach_[0], reach_[1]);
-  stats.dropped_rows += detail::buildClusters(candidates_, patch_radius, labels_, clusters_);
+  stats.dropped_rows +=
+      detail::buildClusters(candidates_, patch_radius, query.tolerance, labels_, clusters_);
   // No kept point deeper than the pair's translational depth plus the tolerance.
   double stale_floor = -query.tolerance;
   for (int dir = 0; dir < 2; ++dir)

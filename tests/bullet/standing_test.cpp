@@ -24,6 +24,7 @@ struct Standing {
   double drift = 0.0;      ///< largest horizontal distance of a centre from its spawn [m]
   double tilt = 0.0;       ///< largest turn of a cow from its spawn orientation [rad]
   double rms_speed = 0.0;  ///< RMS speed of the centres over the last second [m/s]
+  double sink = 0.0;       ///< deepest vertex below the floor at the end [m]
 };
 
 /// Drops four cows 1 cm onto the ground, side by side, and watches them for `seconds`.
@@ -61,13 +62,17 @@ Standing dropCows(bullet::ContactModel model, double hz,
     }
   }
   s.rms_speed = std::sqrt(sum_v2 / double(last_second * cows.size()));
+  for (const btRigidBody* b : cows)
+    for (const btVector3& v : cow->vertices())
+      s.sink = std::max(s.sink, -double((b->getWorldTransform() * v).y()));
   return s;
 }
 
 class CowsOnTheGround : public ::testing::TestWithParam<std::tuple<bullet::ContactModel, int>> {};
 
 // Bounds: the landing rocks a cow by a few millimetres and hundredths of a radian; it
-// settles well within the 10 s (at rest its centre moves by micrometres per second).
+// settles well within the 10 s (at rest its centre moves by micrometres per second),
+// its feet within about the tolerance of the floor.
 TEST_P(CowsOnTheGround, SettleWithoutRockingOrWalking) {
   const bullet::ContactModel model = std::get<0>(GetParam());
   const int hz = std::get<1>(GetParam());
@@ -77,12 +82,16 @@ TEST_P(CowsOnTheGround, SettleWithoutRockingOrWalking) {
   auto cow = bullet::ScBulletShape::create(ModelKind::ClosedPolyhedron, mesh);
   ASSERT_TRUE(cow.ok()) << cow.status().message();
   const Standing s = dropCows(model, hz, cow.value(), 10.0);
-  std::printf("[cows %s %d Hz] drift %.2f mm, tilt %.3f rad, rms speed (last second) %.2e m/s\n",
-              model == bullet::ContactModel::Potential ? "potential" : "manifold", hz,
-              1e3 * s.drift, s.tilt, s.rms_speed);
+  std::printf(
+      "[cows %s %d Hz] drift %.2f mm, tilt %.3f rad, rms speed (last second) %.2e m/s, "
+      "sunk %.2f mm\n",
+      model == bullet::ContactModel::Potential ? "potential" : "manifold", hz, 1e3 * s.drift,
+      s.tilt, s.rms_speed, 1e3 * s.sink);
   EXPECT_LT(s.drift, 0.015);
   EXPECT_LT(s.tilt, 0.1);
   EXPECT_LT(s.rms_speed, 1e-3);
+  // At rest within about the contact tolerance (1 mm) of the floor.
+  EXPECT_LT(s.sink, 0.002);
 }
 
 std::string cowCaseName(

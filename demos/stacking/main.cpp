@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -32,6 +33,7 @@ struct Options : sc::demo::HeadlessOptions {
   sc::RotationMode rotation = sc::bullet::defaultQuerySettings().rotation_mode;
   long steps = 0;  ///< when > 0, overrides seconds (soak runs: bench/soak.sh)
   double hz = 240.0;  ///< physics rate (one substep per step)
+  unsigned seed = 7;  ///< the pile's random turns
   std::vector<std::string> meshes;
 };
 
@@ -283,7 +285,7 @@ class Demo {
                    sc::demo::demoMesh("knot1.off").c_str());
       std::exit(1);
     }
-    unsigned seed = 7;
+    unsigned seed = options_.seed;
     auto next = [&seed] { return (seed = seed * 1103515245u + 12345u) / 4294967296.0; };
     for (int i = 0; i < 24; ++i) {
       const std::size_t k = static_cast<std::size_t>(i) % kinds.size();
@@ -395,17 +397,21 @@ bool parse(int argc, char** argv, Options& o) {
       o.rotation = v == "mix" ? sc::RotationMode::Mix : v == "free" ? sc::RotationMode::Free : sc::RotationMode::Input;
     } else if (a == "--hz" && value(v)) {
       o.hz = std::atof(v.c_str());
+    } else if (a == "--seed" && value(v)) {
+      o.seed = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 10));
     } else if (a == "--steps" && value(v)) {
       o.steps = std::atol(v.c_str());
     } else if (a == "--mesh" && value(v)) {
       o.meshes.push_back(v);
       o.scene = "meshes";
     } else {
-      std::fprintf(stderr,
-                   "usage: %s [--scene tower|pyramid|massratio|meshes|pile] [--model potential|manifold]\n"
-                   "          [--rotation input|mix|free] [--hz RATE (240)]\n"
-                   "          [--mesh BASE.off --mesh BODY.off...] [--headless [--seconds S | --steps N] [--png F] [--json F]]\n",
-                   argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [--scene tower|pyramid|massratio|meshes|pile] [--model potential|manifold]\n"
+          "          [--rotation input|mix|free] [--hz RATE (240)] [--seed N (pile, 7)]\n"
+          "          [--mesh BASE.off --mesh BODY.off...] [--headless [--seconds S | --steps N] "
+          "[--png F] [--json F]]\n",
+          argv[0]);
       return false;
     }
   }

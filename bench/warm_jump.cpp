@@ -309,10 +309,10 @@ bool report(const std::string& label, const Outcome& o, std::FILE* csv) {
     const double excess_wall = w.wall_us - (kRatio * c.wall_us + kSlackUs);
     over_cpu += excess_cpu > 0.0;
     over_wall += excess_wall > 0.0;
-    worst_cpu = std::max(worst_cpu, w.cpu_us / (kRatio * c.cpu_us + kSlackUs));
+    const double ratio_cpu = w.cpu_us / (kRatio * c.cpu_us + kSlackUs);
+    worst_cpu = std::max(worst_cpu, ratio_cpu);
     worst_wall = std::max(worst_wall, w.wall_us / (kRatio * c.wall_us + kSlackUs));
-    if (k > 0)
-      (o.long_move[k] ? long_moves : ordinary).add(w.cpu_us / (kRatio * c.cpu_us + kSlackUs));
+    if (k > 0) (o.long_move[k] ? long_moves : ordinary).add(ratio_cpu);
     warm_cpu.push_back(w.cpu_us);
     cold_cpu.push_back(c.cpu_us);
     if (isJump(k)) {

@@ -56,8 +56,7 @@ Standing dropCows(bullet::ContactModel model, double hz,
       const btVector3 d = t.getOrigin() - spawn[i].getOrigin();
       s.drift = std::max(s.drift, std::hypot(double(d.x()), double(d.z())));
       const btQuaternion turn = t.getRotation() * spawn[i].getRotation().inverse();
-      s.tilt = std::max(s.tilt, double(turn.getAngle() > SIMD_PI ? 2 * SIMD_PI - turn.getAngle()
-                                                                 : turn.getAngle()));
+      s.tilt = std::max(s.tilt, double(turn.getAngleShortestPath()));
       if (k >= steps - last_second) sum_v2 += double(cows[i]->getLinearVelocity().length2());
     }
   }

@@ -401,7 +401,10 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
     d.spring_on[dir] = true;
   if (r.penetrating()) {
     ++stats.penetrating;
-    stats.max_depth = std::max(stats.max_depth, depth);
+    // The depth the rows are measured from: on a non-convex pair in Mix and Free the
+    // mode's TPDV is only its turned contact pose's share of the way out.
+    const DirectedResult& rows = d.rows_out[dir];
+    stats.max_depth = std::max(stats.max_depth, rows.penetrating() ? rows.tpdv.norm() : 0.0);
     stats.max_rotation = std::max(stats.max_rotation, r.rpdv.norm());
     if (!d.spring_on[dir]) {
       ++stats.recovering;

@@ -9,7 +9,10 @@ struct StepStats {
   int pairs = 0;              ///< pairs the algorithm ran on
   int penetrating = 0;        ///< directions with a penetration depth
   int recovering = 0;         ///< directions first seen intersecting (AABB push)
-  double max_depth = 0.0;     ///< largest |TPDV| [m]
+  /// largest translational depth [m]: |TPDV| of the results the rows are measured
+  /// from (on a non-convex pair in Mix and Free, the Input-mode tracker's: the mode's
+  /// own TPDV goes with its RPDV, a turned contact pose's share of the way out)
+  double max_depth = 0.0;
   double max_rotation = 0.0;  ///< largest |RPDV| [rad]
   int projected = 0;          ///< directions whose impact was projected to the entry side
   int rows = 0;               ///< contact rows handed to Bullet's solver

@@ -10,35 +10,53 @@ namespace sc::detail {
 
 namespace {
 constexpr int kMaxSteps = 64;
+/// Each pass gathers its candidates up to this many near margins: a long motion (a
+/// lagging proxy's turn back, a point at a body's radius) would gather thousands of
+/// pairs at once, each query keeping them, for the few that decide. A pass advances as
+/// far as the pairs it gathered cover; the next one starts there.
+constexpr double kMaxReachMargins = 4.0;
+/// Passes per call: a motion longer than this many reaches is advanced partly (the
+/// caller's next iteration goes on).
+constexpr int kMaxPasses = 32;
+
+/// The part of `motion` after fraction s (the same screw-free motion).
+TwistMotion restOf(const TwistMotion& motion, double s) {
+  TwistMotion rest = motion;
+  rest.start = motion.at(s);
+  rest.dc = (1.0 - s) * motion.dc;
+  rest.dtheta = (1.0 - s) * motion.dtheta;
+  return rest;
 }
 
-Rigid TwistMotion::at(double s) const {
-  const Mat3 r = rotationFromVector(s * dtheta) * start.rotation;
-  const Vec3 y = start * center + s * dc;
-  return {r, y - r * center};
-}
-
-double advance(GroupPairQuery& query, const TwistMotion& motion, double skin,
-               const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch,
-               double near_margin) {
+/// One pass of advance() (its contract), from candidates gathered up to a capped
+/// reach; `cut` when that coverage, not a pair, set the result.
+double advancePass(GroupPairQuery& query, const TwistMotion& motion, double reach_rho, double skin,
+                   const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch,
+                   double near_margin, bool& cut) {
   const double angle = motion.dtheta.norm();
   const Vec3 y0_local = motion.center;
-  // Candidates: every pair within reach of the motion at its start.
-  double reach_rho = 0.0;
-  for (const Leaf& leaf : query.targetLeaves())
-    reach_rho = std::max(reach_rho, (leaf.center - y0_local).norm() + leaf.radius);
   const double reach = motion.dc.norm() + angle * reach_rho + skin;
-  query.contactsNear(motion.start, reach, near_margin, scratch);
+  const double gathered = std::min(reach, skin + kMaxReachMargins * near_margin);
+  query.contactsNear(motion.start, gathered, near_margin, scratch);
   // No point moves farther than `sweep` per unit of s: a pair whose gap exceeds
   // skin + limit * sweep cannot block before `limit`. The candidates come nearest
-  // first, so the first such pair ends the search (a long motion may gather
-  // thousands of candidates, of which the nearest few decide).
+  // first, so the first such pair ends the search.
   const double sweep = motion.dc.norm() + angle * reach_rho;
   double limit = 1.0;
-  // Candidates cut short at GroupPairQuery::kMaxContacts are complete only up to a
-  // smaller reach: the motion is advanced only as far as that covers.
-  const double covered = query.nearCoveredReach(motion.start);
+  // The candidates are complete up to the reach gathered (less where
+  // GroupPairQuery::kMaxContacts cut them short; the query's kept pairs may reach
+  // farther, but they are not among them), and every other pair is at least the
+  // distance apart: the motion is advanced only as far as the larger covers.
+  double covered = std::min(query.nearCoveredReach(motion.start), gathered);
+  if (covered < reach) {
+    LeafContact nearest;
+    if (!query.distance(motion.start, reach, nearest))
+      covered = reach;  // nothing within the motion's reach
+    else if (!nearest.intersecting)
+      covered = std::max(covered, nearest.gap);
+  }
   if (covered < reach && sweep > 0.0) limit = std::clamp((covered - skin) / sweep, 0.0, 1.0);
+  const double coverage = limit;
   for (const LeafContact& cand : scratch) {
     if (cand.gap > skin + limit * sweep) break;
     if (cand.intersecting) continue;
@@ -65,7 +83,33 @@ double advance(GroupPairQuery& query, const TwistMotion& motion, double skin,
     }
     limit = std::min(limit, s);
   }
+  cut = limit < 1.0 && limit >= coverage;
   return limit;
+}
+
+}  // namespace
+
+Rigid TwistMotion::at(double s) const {
+  const Mat3 r = rotationFromVector(s * dtheta) * start.rotation;
+  const Vec3 y = start * center + s * dc;
+  return {r, y - r * center};
+}
+
+double advance(GroupPairQuery& query, const TwistMotion& motion, double skin,
+               const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch,
+               double near_margin) {
+  double reach_rho = 0.0;  // bounds every target point's distance to the centre
+  for (const Leaf& leaf : query.targetLeaves())
+    reach_rho = std::max(reach_rho, (leaf.center - motion.center).norm() + leaf.radius);
+  double done = 0.0;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    bool cut = false;
+    const TwistMotion rest = pass == 0 ? motion : restOf(motion, done);
+    const double s = advancePass(query, rest, reach_rho, skin, skip, scratch, near_margin, cut);
+    done = pass == 0 ? s : done + s * (1.0 - done);
+    if (!cut || !(s > 0.0)) break;
+  }
+  return done;
 }
 
 }  // namespace sc::detail

@@ -30,7 +30,9 @@ struct TwistMotion {
 /// Per pair: the gap along the last separating normal n shrinks at most at rate
 /// max(0, -n . dc) + |dtheta| rho, rho bounding the leaf's distance to the centre.
 /// `scratch` is reused between calls. The candidates come from the query's near
-/// pairs (contactsNear with `near_margin`), kept while they cover the motion's reach.
+/// pairs (contactsNear with `near_margin`), gathered in passes along the motion, each
+/// up to a few near margins from where it starts; a motion longer than the passes of
+/// one call cover (32) is advanced partly, to a pose where no pair is within the skin.
 double advance(GroupPairQuery& query, const TwistMotion& motion, double skin,
                const std::vector<LeafPair>& skip, std::vector<LeafContact>& scratch,
                double near_margin);

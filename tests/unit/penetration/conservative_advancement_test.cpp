@@ -29,28 +29,38 @@ struct Scene {
   GroupView t_view, o_view;
   Vec3 centre = Vec3::Zero();
   double size = 0.0;
+  double tolerance = 0.0, skin = 0.0, margin = 0.0;  ///< as a proxy tracker's
+  GroupPairQuery probe;                              ///< exact distances and the start poses
 
   Scene() {
-    MeshData mesh;
-    mesh = test::loadTestMesh("elephant");
-    model = test::closedModel(mesh);
+    model = test::closedModel(test::loadTestMesh("elephant"));
     if (!model) return;
     centre = 0.5 * (model->bounds().min + model->bounds().max);
     size = 0.5 * (model->bounds().max - model->bounds().min).norm();
+    tolerance = 1e-3 * size;
+    skin = 0.25 * tolerance;
+    margin = 2.0 * tolerance;
     t_part = {model.get(), Rigid(), 1};
     o_part = {model.get(), Rigid(), 2};
     t_view = {&t_part, 1, Placement()};
     o_view = {&o_part, 1, Placement()};
+    probe.bind(t_view, o_view);
   }
 
   /// The target turned by `turn`, moved from far along d until it touches, then
   /// backed off by `gap` along d.
-  Rigid nearPose(GroupPairQuery& probe, const Vec3& d, const Mat3& turn, double gap) const {
+  Rigid nearPose(const Vec3& d, const Mat3& turn, double gap) {
     const Rigid far{turn, centre + 2.5 * size * d - turn * centre};
     const Vec3 in = -2.5 * size * d;
     const double s = probe.translationToi(far, in, 1e-9 * size, {});
     return {turn, far.translation + s * in + gap * d};
   }
+};
+
+class ConservativeAdvancement : public ::testing::Test {
+ protected:
+  void SetUp() override { ASSERT_TRUE(scene.model); }
+  Scene scene;
 };
 
 /// Smallest exact distance between the groups at `samples` poses of the motion in
@@ -65,12 +75,9 @@ double closestAlong(GroupPairQuery& probe, const TwistMotion& m, double s, int s
   return closest;
 }
 
-TEST(ConservativeAdvancement, ALongTurnGathersOnlyNearPairsAndStopsOnlyAtAContact) {
-  const Scene scene;
-  ASSERT_TRUE(scene.model);
-  const double tolerance = 1e-3 * scene.size, skin = 0.25 * tolerance, margin = 2 * tolerance;
-  GroupPairQuery probe;
-  probe.bind(scene.t_view, scene.o_view);
+TEST_F(ConservativeAdvancement, ALongTurnGathersOnlyNearPairsAndStopsOnlyAtAContact) {
+  const double tolerance = scene.tolerance, skin = scene.skin, margin = scene.margin;
+  GroupPairQuery& probe = scene.probe;
   test::Rng rng(0x5eed);
   for (int run = 0; run < (SC_TEST_SANITIZED ? 2 : 6); ++run) {
     SCOPED_TRACE(run);
@@ -78,7 +85,7 @@ TEST(ConservativeAdvancement, ALongTurnGathersOnlyNearPairsAndStopsOnlyAtAContac
     const Mat3 turn = Eigen::AngleAxisd(6.0 * test::uniform(rng, 0, 1), test::randomDirection(rng))
                           .toRotationMatrix();
     TwistMotion m;
-    m.start = scene.nearPose(probe, d, turn, 2.0 * tolerance);
+    m.start = scene.nearPose(d, turn, 2.0 * tolerance);
     m.center = scene.centre;
     m.dc = 0.05 * scene.size * test::randomDirection(rng);
     m.dtheta = 0.5 * test::randomDirection(rng);  // a point at the body's radius: 0.5 size
@@ -109,16 +116,13 @@ TEST(ConservativeAdvancement, ALongTurnGathersOnlyNearPairsAndStopsOnlyAtAContac
   }
 }
 
-TEST(ConservativeAdvancement, ALongMotionMeetingNothingCompletesInOneCall) {
-  const Scene scene;
-  ASSERT_TRUE(scene.model);
-  const double tolerance = 1e-3 * scene.size, skin = 0.25 * tolerance, margin = 2 * tolerance;
-  GroupPairQuery probe;
-  probe.bind(scene.t_view, scene.o_view);
+TEST_F(ConservativeAdvancement, ALongMotionMeetingNothingCompletesInOneCall) {
+  const double tolerance = scene.tolerance, skin = scene.skin, margin = scene.margin;
+  GroupPairQuery& probe = scene.probe;
   test::Rng rng(0xc0de);
   const Vec3 d = test::randomDirection(rng);
   TwistMotion m;
-  m.start = scene.nearPose(probe, d, Mat3::Identity(), 2.0 * tolerance);
+  m.start = scene.nearPose(d, Mat3::Identity(), 2.0 * tolerance);
   m.center = scene.centre;
   m.dc = 3.0 * scene.size * d;  // straight away while turning: nothing in the way
   m.dtheta = 0.3 * test::randomDirection(rng);

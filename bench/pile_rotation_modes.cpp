@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "../demos/common/bullet_world.h"
+#include "../demos/common/knot_pile.h"
 #include "meshes.h"
 
 namespace {
@@ -52,7 +53,7 @@ struct Figures {
   double rest = 0.0;  ///< RMS speed over the last second [m/s]
 };
 
-/// The demo's pile: a 3 m x 3 m box of walls 1.2 m high, the knots in six layers.
+/// The demo's pile (demos/common/knot_pile.h), in a fresh world.
 Figures run(sc::RotationMode mode, const std::shared_ptr<sc::bullet::ScBulletShape>& knot,
             double seconds, unsigned seed) {
   const double heap_before = liveHeapMb();
@@ -63,13 +64,6 @@ Figures run(sc::RotationMode mode, const std::shared_ptr<sc::bullet::ScBulletSha
     settings.query.rotation_mode = mode;
     w.makeSmartCollision(settings);
     w.world->setGravity(btVector3(0, -9.81f, 0));
-    const btVector3 halves[5] = {{1.5f, 0.05f, 1.5f},
-                                 {0.05f, 0.6f, 1.5f},
-                                 {0.05f, 0.6f, 1.5f},
-                                 {1.5f, 0.6f, 0.05f},
-                                 {1.5f, 0.6f, 0.05f}};
-    const btVector3 at[5] = {
-        {0, 0.05f, 0}, {-1.55f, 0.6f, 0}, {1.55f, 0.6f, 0}, {0, 0.6f, -1.55f}, {0, 0.6f, 1.55f}};
     std::vector<std::unique_ptr<btCollisionShape>> walls;
     std::vector<std::unique_ptr<btRigidBody>> bodies;
     auto add = [&](btCollisionShape* shape, double mass, const btTransform& pose) {
@@ -81,19 +75,13 @@ Figures run(sc::RotationMode mode, const std::shared_ptr<sc::bullet::ScBulletSha
       bodies.back()->setActivationState(DISABLE_DEACTIVATION);
       w.world->addRigidBody(bodies.back().get());
     };
-    for (int i = 0; i < 5; ++i) {
-      walls.push_back(std::make_unique<btBoxShape>(halves[i]));
-      add(walls.back().get(), 0.0, btTransform(btQuaternion::getIdentity(), at[i]));
+    for (const sc::demo::PileWall& wall : sc::demo::pileWalls()) {
+      walls.push_back(std::make_unique<btBoxShape>(wall.half_extents));
+      add(walls.back().get(), 0.0, btTransform(btQuaternion::getIdentity(), wall.center));
     }
-    auto next = [&seed] { return (seed = seed * 1103515245u + 12345u) / 4294967296.0; };
-    for (int i = 0; i < kKnots; ++i) {
-      const btVector3 p(btScalar(-0.9 + 0.6 * (i % 4)), btScalar(0.5 + 0.6 * (i / 4)),
-                        btScalar(-0.3 + 0.6 * ((i / 2) % 2)));
-      const btQuaternion q(
-          btVector3(btScalar(next() - 0.5), 1, btScalar(next() - 0.5)).normalized(),
-          btScalar(6.283 * next()));
-      add(knot.get(), 1.0, btTransform(q, p));
-    }
+    const std::size_t first_knot = bodies.size();
+    for (const sc::demo::PileBodyPose& pose : sc::demo::pileBodyPoses(kKnots, seed))
+      add(knot.get(), 1.0, btTransform(pose.rotation, pose.position));
     const int steps = static_cast<int>(seconds * kHz), last = static_cast<int>(kHz);
     double cpu = 0.0, speed2 = 0.0;
     for (int s = 0; s < steps; ++s) {
@@ -102,7 +90,7 @@ Figures run(sc::RotationMode mode, const std::shared_ptr<sc::bullet::ScBulletSha
       cpu += threadSeconds() - t0;
       f.depth_mm = std::max(f.depth_mm, 1e3 * w.plugin->stats().max_depth);
       if (s < steps - last) continue;
-      for (std::size_t b = 5; b < bodies.size(); ++b)
+      for (std::size_t b = first_knot; b < bodies.size(); ++b)
         speed2 += double(bodies[b]->getLinearVelocity().length2()) / (kKnots * last);
     }
     f.cpu_ms = 1e3 * cpu / steps;

@@ -388,6 +388,8 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
     return false;
   }
   if (r.code != ErrorCode::Ok) return false;
+  // The result the rows are measured from: `r` itself in Input and on convex pairs.
+  const DirectedResult& rows = d.rows_out[dir];
   if (r.penetrating() && r.tpdv.dot(r.normal) > 0.0) {
     // A depth whose TPDV points out of the opponent is not one (seen from the core
     // when tracking starts within the tolerance of touching): start over.
@@ -403,7 +405,6 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
     ++stats.penetrating;
     // The depth the rows are measured from: on a non-convex pair in Mix and Free the
     // mode's TPDV is only its turned contact pose's share of the way out.
-    const DirectedResult& rows = d.rows_out[dir];
     stats.max_depth = std::max(stats.max_depth, rows.penetrating() ? rows.tpdv.norm() : 0.0);
     stats.max_rotation = std::max(stats.max_rotation, r.rpdv.norm());
     if (!d.spring_on[dir]) {
@@ -420,7 +421,6 @@ bool respond(const DirectedResult& r, int dir, const Side sides[2], DirectionSta
   // they follow the rows' (Input-mode) result, where a Mix or Free result's
   // translation is only its share of the way out.
   const detail::StepBuffer& step = d.plugin.stepBuffer();
-  const DirectedResult& rows = d.rows_out[dir];
   const bool was_in_contact = d.in_contact[dir];
   d.in_contact[dir] = r.penetrating();
   if (!step.impactPass())

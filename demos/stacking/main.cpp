@@ -17,6 +17,7 @@
 
 #include "../common/bullet_world.h"
 #include "../common/cli.h"
+#include "../common/knot_pile.h"
 #include "../common/viewer.h"
 #include "sc_support/off_mesh.h"
 #include "smartcollision/bullet/bullet.h"
@@ -255,17 +256,13 @@ class Demo {
   /// random. (Cows, elephants and camels in the same pile take 120 to 520 ms a step:
   /// issue 16 open, docs/bullet.md.)
   void addPile() {
-    const btVector3 halves[5] = {{1.5f, 0.05f, 1.5f}, {0.05f, 0.6f, 1.5f}, {0.05f, 0.6f, 1.5f},
-                                 {1.5f, 0.6f, 0.05f}, {1.5f, 0.6f, 0.05f}};
-    const btVector3 at[5] = {{0, 0.05f, 0}, {-1.55f, 0.6f, 0}, {1.55f, 0.6f, 0},
-                             {0, 0.6f, -1.55f}, {0, 0.6f, 1.55f}};
-    for (int i = 0; i < 5; ++i) {
-      wall_shapes_.push_back(std::make_unique<btBoxShape>(halves[i]));
+    for (const sc::demo::PileWall& w : sc::demo::pileWalls()) {
+      wall_shapes_.push_back(std::make_unique<btBoxShape>(w.half_extents));
       wall_draw_.push_back(std::make_unique<sc::demo::DrawMesh>(drawMeshOf(boxMesh(1.0))));
       Body b;
-      b.body = addRigid(wall_shapes_.back().get(), 0.0, at[i]);
+      b.body = addRigid(wall_shapes_.back().get(), 0.0, w.center);
       b.mesh = wall_draw_.back().get();
-      b.scale = halves[i];
+      b.scale = w.half_extents;
       b.color[0] = b.color[1] = b.color[2] = 0.6f;
       walls_.push_back(b);
     }
@@ -285,17 +282,13 @@ class Demo {
                    sc::demo::demoMesh("knot1.off").c_str());
       std::exit(1);
     }
-    unsigned seed = options_.seed;
-    auto next = [&seed] { return (seed = seed * 1103515245u + 12345u) / 4294967296.0; };
+    const std::vector<sc::demo::PileBodyPose> poses = sc::demo::pileBodyPoses(24, options_.seed);
     for (int i = 0; i < 24; ++i) {
       const std::size_t k = static_cast<std::size_t>(i) % kinds.size();
-      const btVector3 p(btScalar(-0.9 + 0.6 * (i % 4)), btScalar(0.5 + 0.6 * (i / 4)),
-                        btScalar(-0.3 + 0.6 * ((i / 2) % 2)));
+      const btVector3 p = poses[static_cast<std::size_t>(i)].position;
       Body b;
       b.body = addRigid(kinds[k].get(), 1.0, p);
-      b.body->getWorldTransform().setRotation(
-          btQuaternion(btVector3(btScalar(next() - 0.5), 1, btScalar(next() - 0.5)).normalized(),
-                       btScalar(6.283 * next())));
+      b.body->getWorldTransform().setRotation(poses[static_cast<std::size_t>(i)].rotation);
       b.mesh = mesh_draw_[mesh_draw_.size() - kinds.size() + k].get();
       b.start = p;
       const float palette[4][3] = {{0.85f, 0.45f, 0.25f}, {0.3f, 0.55f, 0.8f},

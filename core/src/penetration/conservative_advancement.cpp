@@ -106,7 +106,7 @@ double advance(GroupPairQuery& query, const TwistMotion& motion, double skin,
     bool cut = false;
     const TwistMotion rest = pass == 0 ? motion : restOf(motion, done);
     const double s = advancePass(query, rest, reach_rho, skin, skip, scratch, near_margin, cut);
-    done = pass == 0 ? s : done + s * (1.0 - done);
+    done += s * (1.0 - done);
     if (!cut || !(s > 0.0)) break;
   }
   return done;

@@ -94,6 +94,21 @@ void ScDynamicsWorld::integrateTransforms(btScalar timeStep) {
   stats.max_rotation = std::max(stats.max_rotation, pass.max_rotation);
 }
 
+void ScDynamicsWorld::removeRigidBody(btRigidBody* body) {
+  forget(body);
+  btDiscreteDynamicsWorld::removeRigidBody(body);
+}
+
+void ScDynamicsWorld::removeCollisionObject(btCollisionObject* object) {
+  forget(object);
+  btDiscreteDynamicsWorld::removeCollisionObject(object);
+}
+
+void ScDynamicsWorld::forget(const btCollisionObject* object) {
+  last_poses_.erase(object);
+  if (plugin_) plugin_->clearBodySettings(object);
+}
+
 bool ScDynamicsWorld::movedFar() const {
   for (const auto& [object, pose] : last_poses_) {
     const btCollisionShape* shape = object->getCollisionShape();

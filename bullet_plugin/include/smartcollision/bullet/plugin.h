@@ -36,7 +36,9 @@ class Plugin {
   /// Per-body override of the world's ContactSettings. A pair with two overridden
   /// bodies takes the larger stiffnesses and damping ratio and the shorter period.
   /// Every valid setting is honoured as given (the rows are implicit: no stiffness is
-  /// clamped); InvalidArgument (nothing kept) otherwise.
+  /// clamped); InvalidArgument (nothing kept) otherwise. Kept by the body's address:
+  /// ScDynamicsWorld clears it when the body is removed; with another world, call
+  /// clearBodySettings before deleting the body.
   Status setBodySettings(const btCollisionObject* body, const ContactSettings& settings);
   void clearBodySettings(const btCollisionObject* body);
   /// The settings of the pair (a, b) after the overrides.

@@ -43,12 +43,18 @@ class ScDynamicsWorld : public btDiscreteDynamicsWorld {
   /// Bullet's integration; then, when a body moved further than its contact
   /// threshold since the last detection, the plugin's impact pass (see .cpp).
   void integrateTransforms(btScalar timeStep) override;
+  /// Bullet's removal; the world and its plugin then hold nothing of the body (its
+  /// last pose, its settings override): it may be deleted at once, and a body later
+  /// built at its address starts with the world's settings.
+  void removeRigidBody(btRigidBody* body) override;
+  void removeCollisionObject(btCollisionObject* object) override;
 
  private:
   bool movedFar() const;
   /// Dispatches again so that pairs with a body just projected measure their rows at
   /// its new pose (Plugin::setRowsPass).
   void measureRowsAgain();
+  void forget(const btCollisionObject* object);
   std::shared_ptr<Plugin> plugin_;
   std::unordered_map<const btCollisionObject*, btTransform> last_poses_;
 };

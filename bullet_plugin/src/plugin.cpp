@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <new>
+#include <vector>
 
 #include "sc_collision_algorithm.h"
 #include "sc_plane_algorithm.h"
@@ -155,6 +157,37 @@ ModelPtr buildPrimitiveModel(const btCollisionShape* shape) {
   }
 }
 
+/// Reads the create function a dispatcher holds for a pair of shape types (Bullet
+/// keeps its tables protected and offers no getter).
+struct DispatcherTable : btCollisionDispatcher {
+  static const btCollisionAlgorithmCreateFunc* contact(const btCollisionDispatcher& d, int a,
+                                                       int b) {
+    return (d.*(&DispatcherTable::m_doubleDispatchContactPoints))[a][b];
+  }
+};
+
+/// The live plugins' registrations: a dispatcher holds one plugin at a time (a second
+/// one would replace the first's create functions, which the dispatcher then keeps
+/// using after that second plugin is gone).
+struct Registration {
+  const btCollisionAlgorithmCreateFunc* func;
+  const btCollisionDispatcher* dispatcher;
+  const Plugin* plugin;
+};
+std::mutex g_registrations_mutex;
+std::vector<Registration> g_registrations;
+
+/// True when a live plugin's algorithms are registered on `dispatcher`: its table
+/// holds a function a live plugin registered there (a stale entry, from a dispatcher
+/// or a plugin since destroyed at the same address, does not count).
+bool pluginRegisteredOn(const btCollisionDispatcher& dispatcher) {
+  const btCollisionAlgorithmCreateFunc* f =
+      DispatcherTable::contact(dispatcher, kShapeType, kShapeType);
+  return std::any_of(g_registrations.begin(), g_registrations.end(), [&](const Registration& r) {
+    return r.func == f && r.dispatcher == &dispatcher;
+  });
+}
+
 }  // namespace
 
 SceneSettings defaultQuerySettings() {
@@ -219,7 +252,12 @@ Plugin::Plugin(const PluginSettings& settings)
       step_(std::make_unique<detail::StepBuffer>()),
       create_funcs_(std::make_unique<CreateFuncs>(this)) {}
 
-Plugin::~Plugin() = default;
+Plugin::~Plugin() {
+  std::lock_guard<std::mutex> lock(g_registrations_mutex);
+  g_registrations.erase(std::remove_if(g_registrations.begin(), g_registrations.end(),
+                                       [this](const Registration& r) { return r.plugin == this; }),
+                        g_registrations.end());
+}
 
 Status Plugin::setSettings(const PluginSettings& settings) {
   Status s = validate(settings);
@@ -318,7 +356,13 @@ Result<std::shared_ptr<Plugin>> registerSmartCollision(btCollisionDispatcher* di
     return Status(ErrorCode::InvalidOperation,
                   "the dispatcher's algorithm pool is too small: build the collision "
                   "configuration from sc::bullet::collisionConstructionInfo()");
+  std::lock_guard<std::mutex> lock(g_registrations_mutex);
+  if (pluginRegisteredOn(*dispatcher))
+    return Status(ErrorCode::InvalidOperation,
+                  "a SmartCollision plugin is already registered on this dispatcher (one per "
+                  "dispatcher: keep and share the first)");
   auto plugin = std::make_shared<Plugin>(settings);
+  g_registrations.push_back({plugin->contactCreateFunc(), dispatcher, plugin.get()});
   const int others[] = {kShapeType,
                         BOX_SHAPE_PROXYTYPE,
                         CONVEX_HULL_SHAPE_PROXYTYPE,

@@ -78,8 +78,11 @@ const std::vector<btVector3>& ScBulletShape::hullVertices() const {
   return hull_vertices_;
 }
 
-void ScBulletShape::setAabbMargin(double margin) {
-  if (std::isfinite(margin) && margin >= 0.0) aabb_margin_ = margin;
+Status ScBulletShape::setAabbMargin(double margin) {
+  if (!(std::isfinite(margin) && margin >= 0.0))
+    return Status(ErrorCode::InvalidArgument, "aabb margin must be finite and >= 0");
+  aabb_margin_ = margin;
+  return {};
 }
 
 void ScBulletShape::getAabb(const btTransform& t, btVector3& aabb_min, btVector3& aabb_max) const {

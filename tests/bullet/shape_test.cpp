@@ -6,6 +6,9 @@
 #include <LinearMath/btPoolAllocator.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include <algorithm>
 #include <vector>
 
@@ -64,6 +67,17 @@ TEST(ScBulletShape, RejectsOpenClosedMesh) {
   EXPECT_TRUE(soup.ok()) << soup.status().message();
 }
 
+TEST(ScBulletShape, RefusesABadAabbMarginAndKeepsItsOwn) {
+  const auto shape = boxShape(btVector3(0.5f, 0.5f, 0.5f));
+  ASSERT_TRUE(shape->setAabbMargin(0.01).ok());
+  for (double bad : {-5.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    const Status s = shape->setAabbMargin(bad);
+    EXPECT_EQ(s.code(), ErrorCode::InvalidArgument) << bad;
+    EXPECT_FALSE(s.message().empty());
+    EXPECT_EQ(shape->aabbMargin(), 0.01) << bad;
+  }
+}
+
 TEST(ScBulletShape, RayTestHitsTheMesh) {
   BulletWorld w(bullet::ContactModel::Potential, 0.0);
   auto shape = boxShape(btVector3(1, 1, 1));
@@ -105,6 +119,32 @@ struct Points : btCollisionWorld::ContactResultCallback {
   double distance = 1e9;
   int count = 0;
 };
+
+TEST(Registration, ASecondPluginOnOneDispatcherIsRefusedAndTheFirstKept) {
+  btDefaultCollisionConfiguration config(bullet::collisionConstructionInfo());
+  btCollisionDispatcher dispatcher(&config), other(&config);
+  btDbvtBroadphase broadphase;
+  btCollisionWorld world(&dispatcher, &broadphase, &config);
+  auto first = bullet::registerSmartCollision(&dispatcher);
+  ASSERT_TRUE(first.ok());
+  // Before, the second call returned Ok and replaced the first's create functions, and
+  // once that second plugin was released the dispatcher called freed ones.
+  EXPECT_EQ(bullet::registerSmartCollision(&dispatcher).status().code(),
+            ErrorCode::InvalidOperation);
+  EXPECT_TRUE(bullet::registerSmartCollision(&other).ok());  // one per dispatcher
+  const auto box = boxShape(btVector3(0.5f, 0.5f, 0.5f));
+  btCollisionObject a, b;
+  a.setCollisionShape(box.get());
+  b.setCollisionShape(box.get());
+  b.getWorldTransform().setOrigin(btVector3(0, 1.2f, 0));
+  Points points;
+  points.m_closestDistanceThreshold = 0.5f;
+  world.contactPairTest(&a, &b, points);  // the first plugin's closest points
+  EXPECT_NEAR(points.distance, 0.2, 1e-4);
+  // Once the first plugin is gone, the dispatcher takes a new one.
+  first.value().reset();
+  EXPECT_TRUE(bullet::registerSmartCollision(&dispatcher).ok());
+}
 
 TEST(Registration, ContactPairTestUsesTheClosestPointsTable) {
   BulletWorld w(bullet::ContactModel::Potential, 0.0);

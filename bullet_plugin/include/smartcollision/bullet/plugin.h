@@ -87,7 +87,8 @@ btDefaultCollisionConstructionInfo collisionConstructionInfo();
 /// closest-points tables. Pairs of Bullet shapes keep Bullet's algorithms.
 /// @return the plugin (keep it alive as long as the dispatcher); InvalidArgument for
 ///   a null dispatcher or bad settings; InvalidOperation when the dispatcher's
-///   algorithm pool is too small (use collisionConstructionInfo()).
+///   algorithm pool is too small (use collisionConstructionInfo()) or a live plugin is
+///   already registered on it (the dispatcher is left as it was).
 Result<std::shared_ptr<Plugin>> registerSmartCollision(btCollisionDispatcher* dispatcher,
                                                        const PluginSettings& settings = {});
 

@@ -54,7 +54,8 @@ class ScBulletShape : public btConcaveShape {
   const std::vector<btVector3>& hullVertices() const;
 
   double aabbMargin() const { return aabb_margin_; }
-  void setAabbMargin(double margin);
+  /// InvalidArgument (margin kept) unless finite and >= 0, as ShapeOptions::aabb_margin.
+  Status setAabbMargin(double margin);
 
   // btCollisionShape / btConcaveShape.
   void getAabb(const btTransform& t, btVector3& aabb_min, btVector3& aabb_max) const override;

@@ -6,8 +6,23 @@
 namespace sc::bullet::detail {
 
 void StepBuffer::addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& impulse) {
-  if (!impulse.isZero() && (!rows_pass_ || cascade()))
-    impulses_.push_back(Impulse{body, lever, impulse});
+  if (impulse.isZero() || (rows_pass_ && !cascade())) return;
+  const btScalar size = impulse.length();
+  auto [it, fresh] = impulses_.try_emplace(body, Impulse{impulse, lever * size, size});
+  if (fresh) return;
+  Impulse& total = it->second;
+  total.weighted_lever += lever * size;
+  total.weight += size;
+  if (total.impulse.fuzzyZero()) {  // opposite ones cancelled
+    total.impulse += impulse;
+    return;
+  }
+  const btVector3 along = total.impulse.normalized();
+  const btScalar reach = impulse.dot(along);
+  if (reach > 0)
+    total.impulse = along * std::max(total.impulse.length(), reach) + (impulse - along * reach);
+  else
+    total.impulse += impulse;
 }
 
 void StepBuffer::addProjection(btRigidBody* body, const btVector3& shift) {
@@ -29,7 +44,8 @@ void StepBuffer::begin() {
 }
 
 void StepBuffer::apply() {
-  for (const Impulse& i : impulses_) i.body->applyImpulse(i.impulse, i.lever);
+  for (const auto& [body, i] : impulses_)
+    body->applyImpulse(i.impulse, i.weighted_lever / i.weight);
   impulses_.clear();
   moved_by_last_ = !projections_.empty();
   for (auto& [body, shift] : projections_) {

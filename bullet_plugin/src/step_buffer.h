@@ -21,8 +21,11 @@ class StepBuffer {
   void attachWorld(bool attached) { world_attached_ = attached; }
   bool worldAttached() const { return world_attached_; }
 
-  /// Recovery push of a pair first seen deep: an impulse on `body` at `lever` from
-  /// its centre of mass.
+  /// Recovery push or impact impulse: an impulse on `body` at `lever` from its centre
+  /// of mass. Each is the whole change of velocity its pair needs, so several on one
+  /// body combine as the largest along each one's direction (the children of a
+  /// compound landing together, or two supports, do not each stop it) and add where
+  /// they oppose; they act at their levers' mean, weighted by their sizes.
   void addImpulse(btRigidBody* body, const btVector3& lever, const btVector3& impulse);
   /// Projection of an impact: `body` is moved by `shift` back to the entry side.
   /// Several projections of one body combine as the largest along each one's
@@ -62,11 +65,11 @@ class StepBuffer {
 
  private:
   struct Impulse {
-    btRigidBody* body;
-    btVector3 lever;
     btVector3 impulse;
+    btVector3 weighted_lever;  ///< sum of lever * |impulse| over the combined ones
+    btScalar weight;           ///< sum of |impulse|
   };
-  std::vector<Impulse> impulses_;
+  std::unordered_map<btRigidBody*, Impulse> impulses_;       ///< reused every detection
   std::unordered_map<btRigidBody*, btVector3> projections_;  ///< reused every detection
   std::unordered_set<const btCollisionObject*> projected_;   ///< each body once
   StepStats stats_;

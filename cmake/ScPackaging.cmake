@@ -8,9 +8,13 @@ install(EXPORT SmartCollisionTargets
         NAMESPACE SmartCollision::
         DESTINATION ${SC_INSTALL_CMAKEDIR})
 
-# The config finds Bullet (pkg-config) only when the plugin was built and installed.
+# The config finds Bullet (pkg-config) only when the plugin was built and installed;
+# the plugin's target is in its own export set, loaded only when Bullet is found.
 if(TARGET sc_bullet)
   set(SC_HAS_BULLET_PLUGIN ON)
+  install(EXPORT SmartCollisionBulletTargets
+          NAMESPACE SmartCollision::
+          DESTINATION ${SC_INSTALL_CMAKEDIR})
 else()
   set(SC_HAS_BULLET_PLUGIN OFF)
 endif()

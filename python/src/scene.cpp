@@ -201,7 +201,8 @@ target_piece, opponent_piece (n, 2). Floats are NaN where status is not OK.)")
           "result",
           [](PyScene& s, int index, int d) {
             const sc::PairStatus& p = s.pair(index);
-            return resultOf(p.results[direction(d)], centerOf(s, p.groups[d]));
+            const int dir = direction(d);  // checked before either array is read
+            return resultOf(p.results[dir], centerOf(s, p.groups[dir]));
           },
           py::arg("index"), py::arg("direction") = 0, "One direction of one pair as a Result.")
       .def(

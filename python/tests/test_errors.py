@@ -145,6 +145,11 @@ def test_scene_misuse_changes_nothing():
         np.testing.assert_array_equal(after[2], before[2])
     assert scene.update() == 1
     assert scene.results()["distance"][0, 0] == pytest.approx(1.0)
+    # The direction is checked before anything of the pair is read (a bad one read past
+    # the pair's two groups first, and the error then depended on the bytes there).
+    for d in (2, -1, 3):
+        with pytest.raises(sc.InvalidArgumentError, match="direction"):
+            scene.result(0, d)
 
 
 def test_cache_file(tmp_path):

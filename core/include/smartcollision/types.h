@@ -70,7 +70,8 @@ inline double boxDistance(const Aabb& a, const Aabb& b) {
   return (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero()).norm();
 }
 
-/// What went wrong, or Ok. Values map one to one onto the SC_* codes of sc.h.
+/// What went wrong, or Ok. Each code has one SC_* code of sc.h, but not its number
+/// (sc.h keeps the manual's SC_ERROR_INVALID_LICENSE = 3): never cast one to the other.
 enum class ErrorCode : std::uint8_t {
   Ok,
   NoResult,                      ///< nothing computed in this direction (far, inactive)

@@ -389,5 +389,29 @@ TEST(TriangleMeshPairs, ClosestPointsInBothOrders) {
   EXPECT_NEAR(closestDistance(w, raised, over_raised), edges, kExact);
 }
 
+class ScaledMeshContact : public ::testing::TestWithParam<ContactModel> {};
+
+// The contact table through a btScaledBvhTriangleMeshShape: a 0.2 m box dropped 5 cm
+// onto a flat mesh at y = 0.1 scaled by (1, 2, 1) rests on y = 0.2 (within the contact
+// tolerance, 1 mm, as on any floor), not on the unscaled y = 0.1.
+TEST_P(ScaledMeshContact, BoxRestsOnTheScaledSurface) {
+  const Grid plane(8, 2.0, [](double, double) { return 0.1; });
+  auto bvh = plane.bvhShape();
+  BulletWorld w(GetParam(), -9.81, 60.0);
+  w.addBody(std::make_shared<btScaledBvhTriangleMeshShape>(bvh.get(), btVector3(1, 2, 1)), 0.0,
+            btVector3(0, 0, 0));
+  btRigidBody* box = w.addBody(boxShape(btVector3(0.1f, 0.1f, 0.1f)), 1.0, btVector3(0, 0.35f, 0));
+  w.step(120);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 8; ++i) {
+    const btVector3 c((i & 1) ? 0.1f : -0.1f, (i & 2) ? 0.1f : -0.1f, (i & 4) ? 0.1f : -0.1f);
+    lowest = std::min(lowest, double((box->getWorldTransform() * c).y()));
+  }
+  EXPECT_NEAR(lowest, 0.2, 1e-3);
+  EXPECT_LT(box->getLinearVelocity().length(), 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, ScaledMeshContact, bothContactModels(), contactModelName);
+
 }  // namespace
 }  // namespace sc::test

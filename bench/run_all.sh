@@ -28,6 +28,7 @@ run penetration_depth "$build/bench/penetration_depth" --csv-dir="$out"
 run scene_scaling "$build/bench/scene_scaling" --csv="$out/scene_scaling.csv"
 run bullet_stacking "$build/bench/bullet_stacking" --csv-dir="$out"
 run pile_rotation_modes "$build/bench/pile_rotation_modes"
+run bullet_terrain "$build/bench/bullet_terrain"
 # The stability matrix writes its CSV next to the others and its page docs/stability.md.
 run stability_matrix "$build/bench/stability_matrix" --csv="$out/stability.csv" \
   --md="$root/docs/stability.md"

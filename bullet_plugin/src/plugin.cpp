@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Plugin: settings, per-body overrides, the primitive-model cache, the impulse
+// Plugin: settings, per-body overrides, the shape-model cache, the impulse
 // buffer and the registration of the create functions on a dispatcher.
 #include "smartcollision/bullet/plugin.h"
 
@@ -8,14 +8,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 #include <new>
+#include <string>
 #include <vector>
 
 #include "sc_collision_algorithm.h"
 #include "sc_plane_algorithm.h"
 #include "smartcollision/bullet/sc_bullet_shape.h"
 #include "step_buffer.h"
+#include "triangle_mesh_model.h"
 
 namespace sc::bullet {
 
@@ -42,14 +45,14 @@ void addFan(const std::vector<int>& loop, const std::vector<Vec3>& vertices, con
   }
 }
 
-ModelPtr convexModel(MeshData mesh) {
+Result<ModelPtr> convexModel(MeshData mesh) {
   Result<PiecePtr> piece = buildPiece(ModelKind::ClosedPolyhedron, std::move(mesh));
-  if (!piece.hasValue()) return nullptr;
-  return std::make_shared<const Model>(ModelKind::ClosedPolyhedron,
-                                       std::vector<PiecePtr>{piece.value()});
+  if (!piece.hasValue()) return piece.status();
+  return ModelPtr(std::make_shared<const Model>(ModelKind::ClosedPolyhedron,
+                                                std::vector<PiecePtr>{piece.value()}));
 }
 
-ModelPtr boxModel(const btVector3& half) {
+Result<ModelPtr> boxModel(const btVector3& half) {
   MeshData m;
   for (int i = 0; i < 8; ++i)
     m.vertices.emplace_back((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
@@ -62,7 +65,7 @@ ModelPtr boxModel(const btVector3& half) {
   return convexModel(std::move(m));
 }
 
-ModelPtr hullModel(const btConvexHullShape& hull) {
+Result<ModelPtr> hullModel(const btConvexHullShape& hull) {
   const int n = hull.getNumPoints();
   std::vector<btScalar> coords;
   coords.reserve(static_cast<std::size_t>(3 * n));
@@ -73,7 +76,7 @@ ModelPtr hullModel(const btConvexHullShape& hull) {
   btConvexHullComputer computer;
   if (computer.compute(coords.data(), 3 * static_cast<int>(sizeof(btScalar)), n, 0, 0) < 0 ||
       computer.faces.size() < 4)
-    return nullptr;
+    return Status(ErrorCode::InvalidGeometry, "the hull's points span no volume");
   MeshData m;
   Vec3 inside = Vec3::Zero();
   for (int i = 0; i < computer.vertices.size(); ++i) {
@@ -98,28 +101,30 @@ ModelPtr hullModel(const btConvexHullShape& hull) {
 /// The core of a rounded primitive: a point (sphere) or the axis segment (capsule) as
 /// a one-triangle soup whose corners repeat, so its support is exactly the point or
 /// the segment; the radius is added to the results (no tessellated surface).
-ModelPtr coreModel(const Vec3& a, const Vec3& b) {
+Result<ModelPtr> coreModel(const Vec3& a, const Vec3& b) {
   MeshData m;
   m.vertices = {a, b};
   m.triangles = {Tri(0, 1, 1)};
   Result<PiecePtr> piece = buildPiece(ModelKind::TriangleSoup, std::move(m));
-  if (!piece.hasValue()) return nullptr;
-  return std::make_shared<const Model>(ModelKind::TriangleSoup,
-                                       std::vector<PiecePtr>{piece.value()});
+  if (!piece.hasValue()) return piece.status();
+  return ModelPtr(
+      std::make_shared<const Model>(ModelKind::TriangleSoup, std::vector<PiecePtr>{piece.value()}));
 }
 
-ModelPtr capsuleModel(const btCapsuleShape& capsule) {
+Result<ModelPtr> capsuleModel(const btCapsuleShape& capsule) {
   Vec3 half = Vec3::Zero();
   half[capsule.getUpAxis()] = double(capsule.getHalfHeight());
   return coreModel(-half, half);
 }
 
-/// Everything a primitive's model depends on, exactly: a shape changed in place (an
-/// edited hull, a resized box) or a new shape at a freed address gets a new model
-/// (sums of the coordinates, the key before, let a reordered or edited hull of the
-/// same sums keep a stale one). Empty for shapes without a model.
-std::vector<btScalar> primitiveKey(const btCollisionShape* shape) {
-  std::vector<btScalar> key{btScalar(shape->getShapeType())};
+/// Everything a shape's model depends on, exactly: a shape changed in place (an
+/// edited hull, a resized box, a rescaled or regrown mesh) or a new shape at a freed
+/// address gets a new model (sums of the coordinates, the key before, let a
+/// reordered or edited hull of the same sums keep a stale one). A triangle mesh's
+/// key is read without walking its triangles (detail::appendTriangleMeshKey). Empty
+/// for shapes without a model.
+std::vector<double> shapeKey(const btCollisionShape* shape) {
+  std::vector<double> key{double(shape->getShapeType())};
   auto add = [&key](const btVector3& v) { key.insert(key.end(), {v.x(), v.y(), v.z()}); };
   switch (shape->getShapeType()) {
     case BOX_SHAPE_PROXYTYPE:
@@ -134,15 +139,25 @@ std::vector<btScalar> primitiveKey(const btCollisionShape* shape) {
       return key;  // the point does not depend on the radius
     case CAPSULE_SHAPE_PROXYTYPE: {
       const auto* capsule = static_cast<const btCapsuleShape*>(shape);
-      key.insert(key.end(), {capsule->getHalfHeight(), btScalar(capsule->getUpAxis())});
+      key.insert(key.end(), {capsule->getHalfHeight(), double(capsule->getUpAxis())});
       return key;
     }
+    case TRIANGLE_MESH_SHAPE_PROXYTYPE:
+    case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE:
+      detail::appendTriangleMeshKey(shape, key);
+      return key;
     default:
       return {};
   }
 }
 
-ModelPtr buildPrimitiveModel(const btCollisionShape* shape) {
+/// Bit for bit, so that a key holding a NaN (a broken shape) still finds its
+/// cached failure instead of building again at every pair.
+bool sameKey(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+Result<ModelPtr> buildShapeModel(const btCollisionShape* shape) {
   switch (shape->getShapeType()) {
     case BOX_SHAPE_PROXYTYPE:
       return boxModel(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin());
@@ -153,7 +168,7 @@ ModelPtr buildPrimitiveModel(const btCollisionShape* shape) {
     case CAPSULE_SHAPE_PROXYTYPE:
       return capsuleModel(*static_cast<const btCapsuleShape*>(shape));
     default:
-      return nullptr;
+      return detail::triangleMeshModel(shape);  // shapeKey admits no other type
   }
 }
 
@@ -313,14 +328,25 @@ ContactSettings Plugin::pairSettings(const btCollisionObject* a, const btCollisi
   return c;
 }
 
-ModelPtr Plugin::primitiveModel(const btCollisionShape* shape) {
-  std::vector<btScalar> key = primitiveKey(shape);
-  if (key.empty()) return nullptr;
+Result<ModelPtr> Plugin::shapeModel(const btCollisionShape* shape) {
+  if (shape == nullptr) return Status(ErrorCode::InvalidArgument, "null shape");
+  if (shape->getShapeType() == kShapeType)
+    return static_cast<const ScBulletShape*>(shape)->modelPtr();
+  std::vector<double> key = shapeKey(shape);
+  if (key.empty())
+    return Status(ErrorCode::InvalidArgument,
+                  std::string("no SmartCollision model for a ") + shape->getName() + " shape");
   auto it = models_.find(shape);
-  if (it != models_.end() && it->second.key == key) return it->second.model;
-  ModelPtr model = buildPrimitiveModel(shape);
-  models_[shape] = CachedModel{model, std::move(key)};
-  return model;
+  if (it == models_.end() || !sameKey(it->second.key, key)) {
+    Result<ModelPtr> built = buildShapeModel(shape);
+    Status status = built.hasValue()
+                        ? Status()
+                        : Status(built.status().code(),
+                                 std::string(shape->getName()) + ": " + built.status().message());
+    it = models_.insert_or_assign(shape, CachedModel{built.value(), status, std::move(key)}).first;
+  }
+  if (!it->second.model) return it->second.status;
+  return it->second.model;
 }
 
 const StepStats& Plugin::stats() const { return step_->stats(); }
@@ -368,7 +394,9 @@ Result<std::shared_ptr<Plugin>> registerSmartCollision(btCollisionDispatcher* di
                         CONVEX_HULL_SHAPE_PROXYTYPE,
                         SPHERE_SHAPE_PROXYTYPE,
                         CAPSULE_SHAPE_PROXYTYPE,
-                        STATIC_PLANE_PROXYTYPE};
+                        STATIC_PLANE_PROXYTYPE,
+                        TRIANGLE_MESH_SHAPE_PROXYTYPE,
+                        SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE};
   for (int other : others) {
     const bool plane = other == STATIC_PLANE_PROXYTYPE;
     for (int order = 0; order < 2; ++order) {

@@ -67,10 +67,9 @@ class PairFigures {
   StepStats saved_;
 };
 
+/// Null when the shape has none (Plugin::shapeModel says why): the pair is ignored.
 ModelPtr modelOf(Plugin& plugin, const btCollisionShape* shape) {
-  if (shape->getShapeType() == kShapeType)
-    return static_cast<const ScBulletShape*>(shape)->modelPtr();
-  return plugin.primitiveModel(shape);
+  return plugin.shapeModel(shape).value();
 }
 
 /// One side of the pair: what the tracker and the response need.

@@ -53,14 +53,14 @@ TEST(PrimitiveModels, SphereAndCapsuleAreTheirCoresNotTriangles) {
   btCapsuleShapeZ capsule(0.2f, 1.0f);  // half height 0.5 along z
   for (const btCollisionShape* shape : {static_cast<const btCollisionShape*>(&sphere),
                                         static_cast<const btCollisionShape*>(&capsule)}) {
-    ModelPtr model = w.plugin->primitiveModel(shape);
+    ModelPtr model = w.plugin->shapeModel(shape).value();
     ASSERT_TRUE(model) << shape->getName();
     ASSERT_EQ(model->pieces().size(), 1u);
     const MeshData& mesh = model->pieces()[0]->mesh();
     EXPECT_EQ(mesh.triangles.size(), 1u) << shape->getName();
     EXPECT_EQ(mesh.vertices.size(), 2u) << shape->getName();
   }
-  const MeshData& segment = w.plugin->primitiveModel(&capsule)->pieces()[0]->mesh();
+  const MeshData& segment = w.plugin->shapeModel(&capsule).value()->pieces()[0]->mesh();
   EXPECT_NEAR(std::abs(segment.vertices[0].z() - segment.vertices[1].z()), 1.0, 1e-12);
   EXPECT_NEAR(segment.vertices[0].head<2>().norm() + segment.vertices[1].head<2>().norm(), 0.0,
               1e-12);
@@ -75,14 +75,14 @@ TEST(PrimitiveModels, EditedHullGetsANewModel) {
     hull.addPoint(btVector3((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f),
                   false);
   hull.recalcLocalAabb();
-  ModelPtr box = w.plugin->primitiveModel(&hull);
+  ModelPtr box = w.plugin->shapeModel(&hull).value();
   ASSERT_TRUE(box);
-  EXPECT_EQ(w.plugin->primitiveModel(&hull), box);  // unchanged: the cached model
+  EXPECT_EQ(w.plugin->shapeModel(&hull).value(), box);  // unchanged: the cached model
   btVector3* p = hull.getUnscaledPoints();
   p[1].setX(0.2f);  // x sum unchanged: +0.5 -> 0.2 on one point, -0.5 -> -0.2 on another
   p[0].setX(-0.2f);
   hull.recalcLocalAabb();
-  ModelPtr prism = w.plugin->primitiveModel(&hull);
+  ModelPtr prism = w.plugin->shapeModel(&hull).value();
   ASSERT_TRUE(prism);
   EXPECT_NE(prism, box);
   EXPECT_NEAR(prism->bounds().min.x(), -0.5, 1e-6);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The plugin object: registered create functions, primitive models, per-body
+// The plugin object: registered create functions, shape models, per-body
 // settings and the impulse buffer of the potential model. One per dispatcher.
 #pragma once
 
@@ -44,12 +44,17 @@ class Plugin {
   /// The settings of the pair (a, b) after the overrides.
   ContactSettings pairSettings(const btCollisionObject* a, const btCollisionObject* b) const;
 
-  /// SmartCollision model of a Bullet primitive, built once per shape and cached:
-  /// btBoxShape and btConvexHullShape as a convex polytope (corners / points, hulled);
-  /// btSphereShape and btCapsuleShape as their core, a point or the axis segment, whose
-  /// results the algorithm widens by the radius (nothing is tessellated). Null for any
-  /// other shape.
-  ModelPtr primitiveModel(const btCollisionShape* shape);
+  /// SmartCollision model of a shape, as the algorithms take it: an ScBulletShape's
+  /// own; btBoxShape and btConvexHullShape as a convex polytope (corners / points,
+  /// hulled); btSphereShape and btCapsuleShape as their core, a point or the axis
+  /// segment, whose results the algorithm widens by the radius (nothing is
+  /// tessellated); btBvhTriangleMeshShape (any btTriangleMeshShape) and
+  /// btScaledBvhTriangleMeshShape as a triangle soup of all their subparts, scaled.
+  /// Built once per shape and cached (rebuilt when the shape changes: see
+  /// docs/bullet.md); the first pair of a shape builds it, or call this ahead (a large
+  /// mesh takes a while). Without a model (a flat hull, a mesh without triangles or
+  /// with a NaN) the shape's pairs are ignored; the status says why.
+  Result<ModelPtr> shapeModel(const btCollisionShape* shape);
 
   /// What the last collision detection saw.
   const StepStats& stats() const;
@@ -65,7 +70,8 @@ class Plugin {
  private:
   struct CachedModel {
     ModelPtr model;
-    std::vector<btScalar> key;  ///< everything the model depends on (see primitiveKey)
+    Status status;            ///< why there is no model
+    std::vector<double> key;  ///< everything the model depends on (see shapeKey)
   };
   struct CreateFuncs;
 
@@ -82,7 +88,8 @@ class Plugin {
 btDefaultCollisionConstructionInfo collisionConstructionInfo();
 
 /// Registers the SmartCollision algorithms for ScBulletShape against ScBulletShape,
-/// btBoxShape, btConvexHullShape, btSphereShape, btCapsuleShape (ScCollisionAlgorithm)
+/// btBoxShape, btConvexHullShape, btSphereShape, btCapsuleShape, btTriangleMeshShape
+/// (btBvhTriangleMeshShape) and btScaledBvhTriangleMeshShape (ScCollisionAlgorithm)
 /// and btStaticPlaneShape (ScPlaneAlgorithm), both orders, in the contact and the
 /// closest-points tables. Pairs of Bullet shapes keep Bullet's algorithms.
 /// @return the plugin (keep it alive as long as the dispatcher); InvalidArgument for

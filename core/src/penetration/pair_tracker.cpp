@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geometry/math_util.h"
+#include "geometry/placement_check.h"
 #include "penetration/convex_resolution.h"
 #include "penetration/initial_resolution.h"
 #include "penetration/proxy_tracker.h"
@@ -175,6 +176,15 @@ ContactPoint contactPointOf(const PairState& state, int dir, const GroupPairQuer
   return p;
 }
 
+/// `g` with a unit quaternion, normalised as the scene normalises; one already unit to
+/// rounding (the scene's, any caller's normalised one) is kept bit for bit.
+GroupView unitView(const GroupView& g) {
+  if (unitToRounding(g.placement.orientation)) return g;
+  GroupView unit = g;
+  unit.placement = unitPlacement(g.placement);
+  return unit;
+}
+
 }  // namespace
 }  // namespace detail
 
@@ -188,13 +198,16 @@ void PairTracker::update(const GroupView& a, const GroupView& b, Directions dire
   out[0] = DirectedResult();
   out[1] = DirectedResult();
   state_->last[0] = state_->last[1] = detail::ProxyOutcome();
-  if (!validate(settings).ok()) {  // a few comparisons; no tracking state is touched
+  // A few comparisons; on bad input no tracking state is touched.
+  if (!validate(settings).ok() || !validate(a).ok() || !validate(b).ok()) {
     if (directions.a_target) out[0].code = ErrorCode::InvalidArgument;
     if (directions.b_target) out[1].code = ErrorCode::InvalidArgument;
     return;
   }
-  if (directions.a_target) detail::runDirection(*state_, 0, a, b, settings, out[0]);
-  if (directions.b_target) detail::runDirection(*state_, 1, b, a, settings, out[1]);
+  const GroupView unit_a = detail::unitView(a);
+  const GroupView unit_b = detail::unitView(b);
+  if (directions.a_target) detail::runDirection(*state_, 0, unit_a, unit_b, settings, out[0]);
+  if (directions.b_target) detail::runDirection(*state_, 1, unit_b, unit_a, settings, out[1]);
 }
 
 void PairTracker::contactPoints(int direction, double threshold, std::vector<ContactPoint>& out) {

@@ -102,8 +102,10 @@ class SC_API PairTracker {
 
   /// Computes the requested directions. `out[0]` has a as target, `out[1]` has b.
   /// A direction not requested is left NoResult and its state is kept.
-  /// A direction whose pair intersects and that has no tracking state yet reports
-  /// InvalidInitialTransformation; tracking starts once it is seen apart.
+  /// A direction whose pair overlaps by more than the tolerance and that has no
+  /// tracking state yet reports InvalidInitialTransformation; tracking starts once it
+  /// is seen apart. One first seen touching, or overlapping by at most the tolerance,
+  /// reports Touching (distance 0) and starts tracking (docs/penetration.md).
   /// Settings or a group failing validate() make every requested direction
   /// InvalidArgument and change no state (validate() gives the reason). A group's
   /// quaternion is normalised as the scene's are. Each direction follows a path from its last

@@ -173,6 +173,9 @@ class SC_API SCObject {
 /// The scene manager (manual 8): objects by id, groups, activities, results.
 class SC_API SCSceneManager {
  public:
+  /// SC_SCENE_MANAGER_CLOSED_POLYHEDRA or SC_SCENE_MANAGER_TRIANGLE_SOUP. Any other
+  /// type (an SC_OBJECT_TYPE_* included): every later call returns
+  /// SC_ERROR_INVALID_ARGUMENT, as on an SCObject of unknown type.
   explicit SCSceneManager(SCenum type);
   /// Releases every object still in the scene (the objects themselves live on).
   ~SCSceneManager();

@@ -23,4 +23,10 @@ struct GroupView {
   Placement placement;
 };
 
+/// InvalidArgument, saying why, for a view the pair queries cannot use: a negative
+/// part_count, null parts with part_count > 0, or a placement Scene::setGroupPlacement
+/// refuses (a centre not finite or beyond 1e100 in magnitude, a quaternion not finite
+/// or zero). Any other finite quaternion is accepted and normalised where used.
+SC_API Status validate(const GroupView& group);
+
 }  // namespace sc

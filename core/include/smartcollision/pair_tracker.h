@@ -102,12 +102,15 @@ class SC_API PairTracker {
 
   /// Computes the requested directions. `out[0]` has a as target, `out[1]` has b.
   /// A direction not requested is left NoResult and its state is kept.
-  /// A direction whose pair intersects and that has no tracking state yet reports
-  /// InvalidInitialTransformation; tracking starts once it is seen apart.
-  /// Settings failing validate() make every requested direction InvalidArgument and
-  /// change no state. Each direction follows a path from its last update (see
-  /// Scene::setGroupPlacement); reset() first for a teleport.
-  /// Allocates only while the pair's working sets grow.
+  /// A direction whose pair overlaps by more than the tolerance and that has no
+  /// tracking state yet reports InvalidInitialTransformation; tracking starts once it
+  /// is seen apart. One first seen touching, or overlapping by at most the tolerance,
+  /// reports Touching (distance 0) and starts tracking (docs/penetration.md).
+  /// Settings or a group failing validate() make every requested direction
+  /// InvalidArgument and change no state (validate() gives the reason). A group's
+  /// quaternion is normalised as the scene's are. Each direction follows a path from its last
+  /// update (see Scene::setGroupPlacement); reset() first for a teleport. Allocates only while the
+  /// pair's working sets grow.
   void update(const GroupView& a, const GroupView& b, Directions directions,
               const PairSettings& settings, DirectedResult out[2]);
 

@@ -259,10 +259,10 @@ SCSceneManager::~SCSceneManager() {
 }
 
 SCint SCSceneManager::AddObject(SCint id, SCObject* object) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   if (object == nullptr) return SC_ERROR_INVALID_ARGUMENT;
   SCObject::Impl& o = *object->impl_;
-  if (!impl_->known_type || !o.known_type || o.kind != impl_->scene.kind())
-    return SC_ERROR_INVALID_OPERATION;
+  if (!o.known_type || o.kind != impl_->scene.kind()) return SC_ERROR_INVALID_OPERATION;
   if (o.scene != nullptr) return SC_ERROR_INVALID_OPERATION;
   if (impl_->objects.count(id)) return SC_ERROR_INVALID_ID;
   try {
@@ -280,6 +280,7 @@ SCint SCSceneManager::AddObject(SCint id, SCObject* object) {
 }
 
 SCint SCSceneManager::DeleteObject(SCint id) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   const auto it = impl_->objects.find(id);
   if (it == impl_->objects.end()) return SC_ERROR_INVALID_ID;
   SCObject::Impl& o = *it->second->impl_;
@@ -292,11 +293,13 @@ SCint SCSceneManager::DeleteObject(SCint id) {
 }
 
 SCint SCSceneManager::AddObjectToGroup(SCint gid, SCint id) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   if (gid < 0) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.addObjectToGroup(gid, id));
 }
 
 SCint SCSceneManager::DeleteObjectFromGroup(SCint gid, SCint id) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.removeObjectFromGroup(gid, id));
 }
 
@@ -321,37 +324,45 @@ static SCint getGroupTransformation(const sc::Scene& scene, SCint gid, SCenum ty
 }
 
 SCint SCSceneManager::SetTransformation(SCint gid, SCenum type, const SCdouble* trans) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   return setGroupTransformation(impl_->scene, gid, type, trans);
 }
 SCint SCSceneManager::SetTransformation(SCint gid, SCenum type, const SCfloat* trans) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   return setGroupTransformation(impl_->scene, gid, type, trans);
 }
 SCint SCSceneManager::GetTransformation(SCint gid, SCenum type, SCdouble* trans) const {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   return getGroupTransformation(impl_->scene, gid, type, trans);
 }
 SCint SCSceneManager::GetTransformation(SCint gid, SCenum type, SCfloat* trans) const {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   return getGroupTransformation(impl_->scene, gid, type, trans);
 }
 
 SCint SCSceneManager::SetActivityObject(SCint id, SCenum activity) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   sc::Activity a;
   if (!fromSc(kActivities, activity, a)) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.setObjectActivity(id, a));
 }
 
 SCint SCSceneManager::SetActivityGroup(SCint gid, SCenum activity) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   sc::Activity a;
   if (!fromSc(kActivities, activity, a)) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.setGroupActivity(gid, a));
 }
 
 SCint SCSceneManager::SetActivityPair(SCint gid1, SCint gid2, SCenum activity) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   sc::PairActivity a;
   if (!fromSc(kPairActivities, activity, a)) return SC_ERROR_INVALID_ARGUMENT;
   return toScCode(impl_->scene.setPairActivity(gid1, gid2, a));
 }
 
 SCint SCSceneManager::SetAttributeDouble(SCenum attribute, SCdouble value) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   sc::SceneSettings s = impl_->scene.settings();
   double* field = doubleField(s, attribute);
   if (field == nullptr) return SC_ERROR_INVALID_ARGUMENT;
@@ -360,6 +371,7 @@ SCint SCSceneManager::SetAttributeDouble(SCenum attribute, SCdouble value) {
 }
 
 SCint SCSceneManager::SetAttributeInteger(SCenum attribute, SCint value) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   sc::SceneSettings s = impl_->scene.settings();
   if (bool* flag = boolField(s, attribute)) {
     if (value != 0 && value != 1) return SC_ERROR_INVALID_ARGUMENT;
@@ -373,6 +385,7 @@ SCint SCSceneManager::SetAttributeInteger(SCenum attribute, SCint value) {
 }
 
 SCint SCSceneManager::SetAttributeEnum(SCenum attribute, SCenum value) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   if (attribute != SC_SCENE_MANAGER_ROTATION_MODE) return SC_ERROR_INVALID_ARGUMENT;
   sc::SceneSettings s = impl_->scene.settings();
   if (!fromSc(kRotationModes, value, s.rotation_mode)) return SC_ERROR_INVALID_ARGUMENT;
@@ -380,6 +393,7 @@ SCint SCSceneManager::SetAttributeEnum(SCenum attribute, SCenum value) {
 }
 
 SCint SCSceneManager::GetAttributeDouble(SCenum attribute, SCdouble* value) const {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   sc::SceneSettings s = impl_->scene.settings();
   const double* field = doubleField(s, attribute);
   if (field == nullptr || value == nullptr) return SC_ERROR_INVALID_ARGUMENT;
@@ -388,6 +402,7 @@ SCint SCSceneManager::GetAttributeDouble(SCenum attribute, SCdouble* value) cons
 }
 
 SCint SCSceneManager::GetAttributeInteger(SCenum attribute, SCint* value) const {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   sc::SceneSettings s = impl_->scene.settings();
   if (const bool* flag = boolField(s, attribute); flag != nullptr && value != nullptr) {
     *value = *flag ? 1 : 0;
@@ -400,6 +415,7 @@ SCint SCSceneManager::GetAttributeInteger(SCenum attribute, SCint* value) const 
 }
 
 SCint SCSceneManager::GetAttributeEnum(SCenum attribute, SCenum* value) const {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   if (attribute != SC_SCENE_MANAGER_ROTATION_MODE || value == nullptr)
     return SC_ERROR_INVALID_ARGUMENT;
   *value = fromRotationMode(impl_->scene.settings().rotation_mode);
@@ -407,6 +423,7 @@ SCint SCSceneManager::GetAttributeEnum(SCenum attribute, SCenum* value) const {
 }
 
 SCint SCSceneManager::UpdateStatus() {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   try {
     return toScCode(impl_->scene.update());
   } catch (const std::exception&) {
@@ -415,12 +432,14 @@ SCint SCSceneManager::UpdateStatus() {
 }
 
 SCint SCSceneManager::GetStatus(SCenum type, SCint* value) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   if (type != SC_STATUS_COUNT || value == nullptr) return SC_ERROR_INVALID_ARGUMENT;
   *value = static_cast<SCint>(impl_->scene.pairs().size());
   return SC_NO_ERROR;
 }
 
 SCint SCSceneManager::GetStatus(SCenum type, SCint* value, SCint index, SCbool reverseFlag) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   const auto& pairs = impl_->scene.pairs();
   if (value == nullptr || index < 0 || index >= static_cast<SCint>(pairs.size()))
     return SC_ERROR_INVALID_ARGUMENT;
@@ -429,6 +448,7 @@ SCint SCSceneManager::GetStatus(SCenum type, SCint* value, SCint index, SCbool r
 }
 
 SCint SCSceneManager::GetStatus(SCenum type, SCfloat* value, SCint index, SCbool reverseFlag) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   const auto& pairs = impl_->scene.pairs();
   if (value == nullptr || index < 0 || index >= static_cast<SCint>(pairs.size()))
     return SC_ERROR_INVALID_ARGUMENT;
@@ -436,6 +456,7 @@ SCint SCSceneManager::GetStatus(SCenum type, SCfloat* value, SCint index, SCbool
 }
 
 SCint SCSceneManager::GetStatus(SCenum type, SCdouble* value, SCint index, SCbool reverseFlag) {
+  if (!impl_->known_type) return SC_ERROR_INVALID_ARGUMENT;
   const auto& pairs = impl_->scene.pairs();
   if (value == nullptr || index < 0 || index >= static_cast<SCint>(pairs.size()))
     return SC_ERROR_INVALID_ARGUMENT;

@@ -4,6 +4,9 @@
 
 #include <cmath>
 
+#include "geometry/math_util.h"
+#include "geometry/placement_check.h"
+
 namespace sc {
 namespace {
 
@@ -96,4 +99,42 @@ Result<Quat> rotationToQuaternion(const Mat3& r, double tolerance) {
   return quaternionOf(r);
 }
 
+namespace detail {
+
+Status checkPlacement(const Placement& p) {
+  // allFinite first: comparing a NaN raises FE_INVALID (a trap where enabled).
+  if (!allFinite(p.world_center) || !allFinite(p.local_center) ||
+      !withinCoordinateLimit(p.world_center) || !withinCoordinateLimit(p.local_center))
+    return Status(ErrorCode::InvalidArgument,
+                  "placement not finite or a centre beyond 1e100 in magnitude");
+  const Eigen::Vector4d q = p.orientation.coeffs();
+  if (!allFinite(q)) return Status(ErrorCode::InvalidArgument, "orientation quaternion not finite");
+  if (q.cwiseAbs().maxCoeff() == 0.0)
+    return Status(ErrorCode::InvalidArgument, "orientation quaternion zero");
+  return {};
+}
+
+Placement unitPlacement(const Placement& p) {
+  // Eigen's normalize() in the usual range (bit for bit what setGroupPlacement always
+  // did); a rescaling first where squaring the components would underflow or overflow.
+  const double largest = p.orientation.coeffs().cwiseAbs().maxCoeff();
+  Placement unit = p;
+  if (largest > 1e-150 && largest < 1e150)
+    unit.orientation.normalize();
+  else
+    unit.setOrientation(p.orientation);
+  return unit;
+}
+
+Result<Placement> usablePlacement(const Placement& p) {
+  if (Status s = checkPlacement(p); !s.ok()) return s;
+  return unitPlacement(p);
+}
+
+bool unitToRounding(const Quat& q) {
+  // Normalised in double precision, |q|^2 is within a few 1e-16 of 1.
+  return std::abs(q.squaredNorm() - 1.0) <= 1e-12;
+}
+
+}  // namespace detail
 }  // namespace sc

@@ -49,7 +49,8 @@ Vec3 smallestExit(const ResolutionScratch& s) {
 
 bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
                                 const PairSettings& settings, Rigid& free_pose,
-                                ResolutionScratch& scratch, int max_rounds) {
+                                ResolutionScratch& scratch, double max_depth) {
+  constexpr int max_rounds = 32;
   // The exit keeps a gap of half the tolerance, so the proxy starts clearly free.
   const double skin = 0.5 * settings.tolerance;
   scratch.normals.clear();
@@ -63,6 +64,7 @@ bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
       if (!c.intersecting) continue;
       any = true;
       const EpaResult e = leafExit(query, c, pose, scratch.depth);
+      if (e.depth + e.normal.dot(t) > max_depth) return false;  // its overlap at the goal
       // Row in the total translation: n . (t' - t) >= depth + skin.
       scratch.normals.push_back(e.normal);
       scratch.offsets.push_back(e.depth + skin + e.normal.dot(t));

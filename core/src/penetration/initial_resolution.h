@@ -25,9 +25,11 @@ struct ResolutionScratch {
 /// tried; pairs it brings into intersection add their own half-spaces. Translation
 /// only: the orientation is the input's, as in Input mode.
 /// @return true with `free_pose` = goal translated by t, a pose where no leaf pair
-///   intersects; false when no free pose was found within `max_rounds`.
+///   intersects; false when no free pose was found within 32 rounds, or as soon as
+///   an exit deeper than `max_depth` is met (a pose beyond touching, when the caller
+///   only accepts one within the tolerance of it).
 bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
                                 const PairSettings& settings, Rigid& free_pose,
-                                ResolutionScratch& scratch, int max_rounds = 32);
+                                ResolutionScratch& scratch, double max_depth = kInfinity);
 
 }  // namespace sc::detail

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geometry/math_util.h"
+#include "geometry/placement_check.h"
 #include "penetration/convex_resolution.h"
 #include "penetration/initial_resolution.h"
 #include "penetration/proxy_tracker.h"
@@ -112,6 +113,47 @@ bool runConvex(PairState& state, int dir, const GroupView& target, const GroupVi
                          settings, state.convex[dir], tracker, outcome);
 }
 
+/// A direction first seen intersecting, but within the tolerance of touching: every
+/// intersecting leaf pair's exit at most the tolerance deep (docs/penetration.md). The
+/// proxy starts at the free pose just out of contact (the slide's rows need closest
+/// points there, which touching leaves lack) and the goal reports Touching: distance
+/// 0, the free pose's closest pair carried to the goal. A deeper overlap changes
+/// nothing and stays InvalidInitialTransformation.
+void startTouching(PairState& state, int dir, const Rigid& goal, const PairSettings& settings,
+                   ProxyOutcome& outcome) {
+  GroupPairQuery& query = state.query[dir];
+  Rigid free_pose;
+  ProxyOutcome touching;
+  if (!resolveInitialIntersection(query, goal, settings, free_pose, state.resolution,
+                                  settings.tolerance) ||
+      !query.distance(free_pose, kInfinity, touching.contact))
+    return;
+  touching.code = ErrorCode::Ok;
+  touching.contact.point_t += goal.translation - free_pose.translation;
+  touching.contact.gap = 0.0;
+  touching.contact_pose = goal;
+  touching.distance = 0.0;
+  state.tracker[dir].startAt(free_pose, false);
+  outcome = touching;
+}
+
+/// The general path's answer to a pair first seen intersecting: Touching within the
+/// tolerance; else, with resolve_initial_intersection, the depth from a free pose nearby.
+void firstSeenIntersecting(PairState& state, int dir, const Rigid& goal, const Vec3& center,
+                           const PairSettings& settings, ProxyOutcome& outcome) {
+  if (!settings.resolve_initial_intersection) {
+    startTouching(state, dir, goal, settings, outcome);
+    return;
+  }
+  Rigid free_pose;
+  GroupPairQuery& query = state.query[dir];
+  if (resolveInitialIntersection(query, goal, settings, free_pose, state.resolution)) {
+    // Start tracking at the free pose, then move to the goal as on any later frame.
+    state.tracker[dir].update(query, free_pose, center, settings, outcome);
+    state.tracker[dir].update(query, goal, center, settings, outcome);
+  }
+}
+
 void runDirection(PairState& state, int dir, const GroupView& target, const GroupView& opponent,
                   const PairSettings& requested, DirectedResult& out) {
   GroupPairQuery& query = state.query[dir];
@@ -133,15 +175,9 @@ void runDirection(PairState& state, int dir, const GroupView& target, const Grou
   tracker.travel() = TravelBudget{
       capped ? settings.proxy_travel_ratio * query.targetMotion(state.goal[dir], goal) : kInfinity};
   if (!runConvex(state, dir, target, opponent, goal, settings, outcome)) {
-    Rigid free_pose;
     tracker.update(query, goal, center, settings, outcome);
-    if (outcome.code == ErrorCode::InvalidInitialTransformation &&
-        settings.resolve_initial_intersection &&
-        resolveInitialIntersection(query, goal, settings, free_pose, state.resolution)) {
-      // Start tracking at the free pose, then move to the goal as on any later frame.
-      tracker.update(query, free_pose, center, settings, outcome);
-      tracker.update(query, goal, center, settings, outcome);
-    }
+    if (outcome.code == ErrorCode::InvalidInitialTransformation)
+      firstSeenIntersecting(state, dir, goal, center, settings, outcome);
   }
   toWorld(outcome, target, opponent, query, settings.tolerance, out);
   // Debug builds: a result breaking its contract aborts here, at its source.
@@ -175,6 +211,15 @@ ContactPoint contactPointOf(const PairState& state, int dir, const GroupPairQuer
   return p;
 }
 
+/// `g` with a unit quaternion, normalised as the scene normalises; one already unit to
+/// rounding (the scene's, any caller's normalised one) is kept bit for bit.
+GroupView unitView(const GroupView& g) {
+  if (unitToRounding(g.placement.orientation)) return g;
+  GroupView unit = g;
+  unit.placement = unitPlacement(g.placement);
+  return unit;
+}
+
 }  // namespace
 }  // namespace detail
 
@@ -188,13 +233,16 @@ void PairTracker::update(const GroupView& a, const GroupView& b, Directions dire
   out[0] = DirectedResult();
   out[1] = DirectedResult();
   state_->last[0] = state_->last[1] = detail::ProxyOutcome();
-  if (!validate(settings).ok()) {  // a few comparisons; no tracking state is touched
+  // A few comparisons; on bad input no tracking state is touched.
+  if (!validate(settings).ok() || !validate(a).ok() || !validate(b).ok()) {
     if (directions.a_target) out[0].code = ErrorCode::InvalidArgument;
     if (directions.b_target) out[1].code = ErrorCode::InvalidArgument;
     return;
   }
-  if (directions.a_target) detail::runDirection(*state_, 0, a, b, settings, out[0]);
-  if (directions.b_target) detail::runDirection(*state_, 1, b, a, settings, out[1]);
+  const GroupView unit_a = detail::unitView(a);
+  const GroupView unit_b = detail::unitView(b);
+  if (directions.a_target) detail::runDirection(*state_, 0, unit_a, unit_b, settings, out[0]);
+  if (directions.b_target) detail::runDirection(*state_, 1, unit_b, unit_a, settings, out[1]);
 }
 
 void PairTracker::contactPoints(int direction, double threshold, std::vector<ContactPoint>& out) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/math_util.h"
+#include "geometry/placement_check.h"
 #include "scene/aabb_tree.h"
 #include "scene/activity_table.h"
 #include "scene/pair_table.h"
@@ -77,29 +78,6 @@ struct Job {
   const GroupRec* second = nullptr;
   Directions dirs;
 };
-
-/// `p` as the queries use it: centres finite and within kMaxCoordinate (as vertices
-/// are, so no distance or motion overflows), the quaternion normalised (any finite,
-/// non-zero one, as sc.h's SetTransformation does).
-Result<Placement> usablePlacement(const Placement& p) {
-  if (!detail::withinCoordinateLimit(p.world_center) ||
-      !detail::withinCoordinateLimit(p.local_center))
-    return Status(ErrorCode::InvalidArgument,
-                  "placement not finite or a centre beyond 1e100 in magnitude");
-  const Eigen::Vector4d q = p.orientation.coeffs();
-  if (!detail::allFinite(q))
-    return Status(ErrorCode::InvalidArgument, "orientation quaternion not finite");
-  const double largest = q.cwiseAbs().maxCoeff();
-  if (largest == 0.0) return Status(ErrorCode::InvalidArgument, "orientation quaternion zero");
-  // Eigen's normalize() in the usual range (bit for bit what setGroupPlacement always
-  // did); a rescaling first where squaring the components would underflow or overflow.
-  Placement unit = p;
-  if (largest > 1e-150 && largest < 1e150)
-    unit.orientation.normalize();
-  else
-    unit.setOrientation(p.orientation);
-  return unit;
-}
 
 GroupView viewOf(const GroupRec& g) {
   GroupView v;
@@ -413,7 +391,7 @@ Status Scene::addObject(int id, ModelPtr model, const Placement& placement) {
   if (model->kind() != impl_->kind)
     return Status(ErrorCode::InvalidOperation, "object type differs from the scene type");
   if (impl_->objects.count(id)) return invalidId("object id already in the scene");
-  const Result<Placement> unit = usablePlacement(placement);
+  const Result<Placement> unit = detail::usablePlacement(placement);
   if (!unit.ok()) return unit.status();
   ObjectRec o;
   o.id = id;
@@ -481,7 +459,7 @@ Status Scene::setGroupPlacement(int gid, const Placement& placement) {
     return Status(ErrorCode::InvalidOperation, "the static group does not move");
   const auto it = impl_->groups.find(gid);
   if (it == impl_->groups.end()) return invalidId("unknown group id");
-  const Result<Placement> unit = usablePlacement(placement);
+  const Result<Placement> unit = detail::usablePlacement(placement);
   if (!unit.ok()) return unit.status();
   it->second.placement = unit.value();
   return {};
@@ -511,6 +489,9 @@ Status Scene::setGroupActivity(int gid, Activity activity) {
     return Status(ErrorCode::InvalidOperation, "the static group is always passive");
   const auto it = impl_->groups.find(gid);
   if (it == impl_->groups.end()) return invalidId("unknown group id");
+  if (activity != Activity::Active && activity != Activity::Sleeping &&
+      activity != Activity::Passive && activity != Activity::Inactive)
+    return Status(ErrorCode::InvalidArgument, "unknown group activity");
   it->second.activity = activity;
   // A passive or inactive group keeps no collision status (manual 8.4): drop it now,
   // so that re-activating before the next update cannot resume it. An inactive group
@@ -527,6 +508,9 @@ Status Scene::setPairActivity(int target_gid, int opponent_gid, PairActivity act
   if (!hasGroup(target_gid) || !hasGroup(opponent_gid)) return invalidId("unknown group id");
   if (target_gid == opponent_gid)
     return Status(ErrorCode::InvalidArgument, "a pair needs two different groups");
+  if (activity != PairActivity::Active && activity != PairActivity::Inactive &&
+      activity != PairActivity::OneWayActive && activity != PairActivity::OneWayInactive)
+    return Status(ErrorCode::InvalidArgument, "unknown pair activity");
   impl_->overrides.set(target_gid, opponent_gid, activity);
   return {};
 }

@@ -2,6 +2,7 @@
 #include "penetration/initial_resolution.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "geometry/math_util.h"
 #include "penetration/contact_qp.h"
@@ -55,6 +56,12 @@ bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
   const double skin = 0.5 * settings.tolerance;
   scratch.normals.clear();
   scratch.offsets.clear();
+  // Bounded: one intersecting pair deeper than the bound settles it before every
+  // intersecting pair is gathered (thousands in a deep overlap of two large meshes).
+  LeafContact first;
+  if (std::isfinite(max_depth) && query.intersects(goal, &first) &&
+      leafExit(query, first, goal, scratch.depth).depth > max_depth)
+    return false;
   Vec3 t = Vec3::Zero();
   for (int round = 0; round < max_rounds; ++round) {
     const Rigid pose{goal.rotation, goal.translation + t};

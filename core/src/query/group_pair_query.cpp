@@ -514,6 +514,7 @@ void GroupPairQuery::contacts(const Rigid& o_from_t, double threshold,
 struct GroupPairQuery::IntersectPolicy {
   GroupPairQuery& q;
   bool hit = false;
+  LeafContact found;
 
   bool prunes(double bound) const { return bound > 0.0; }
   double reach() const { return 0.0; }
@@ -523,20 +524,22 @@ struct GroupPairQuery::IntersectPolicy {
   void pruned(const NodePair&) const {}
   bool visit(const NodePair& p) {
     bool beyond = false;
-    hit = q.evaluate(p, q.o_from_piece_[p.t_slot], 0.0, beyond).intersecting;
+    found = q.evaluate(p, q.o_from_piece_[p.t_slot], 0.0, beyond);
+    hit = found.intersecting;
     return !hit;
   }
 };
 
-bool GroupPairQuery::intersects(const Rigid& o_from_t) {
+bool GroupPairQuery::intersects(const Rigid& o_from_t, LeafContact* first) {
   counters_ = TraversalCounters();
   if (knownLowerBound(o_from_t) > 0.0) {
     counters_.shortcut = true;
     return false;
   }
   placeTargets(o_from_t);
-  IntersectPolicy policy{*this};
+  IntersectPolicy policy{*this, false, LeafContact()};
   traverse(policy);
+  if (policy.hit && first != nullptr) *first = policy.found;
   return policy.hit;
 }
 

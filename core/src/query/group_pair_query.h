@@ -99,8 +99,8 @@ class GroupPairQuery {
   /// Closest points of one leaf pair (GJK with its warm start).
   LeafContact pairAt(int t_leaf, int o_leaf, const Rigid& o_from_t);
 
-  /// True when some leaf pair intersects.
-  bool intersects(const Rigid& o_from_t);
+  /// True when some leaf pair intersects; the first one found goes to `first`.
+  bool intersects(const Rigid& o_from_t, LeafContact* first = nullptr);
 
   /// Separation of one leaf pair along the unit direction n (opponent towards target):
   /// min over the target leaf of n.x minus max over the opponent leaf of n.x. Exact for

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// StackingSolver: Bullet's iterations, then bottom-up shock-propagation sweeps.
+// StackingSolver: spring rows unsplit; Bullet's iterations, then bottom-up
+// shock-propagation sweeps.
 #include "smartcollision/bullet/stacking_solver.h"
 
 #include <algorithm>
@@ -42,7 +43,30 @@ void solveUpperOnly(btSolverBody& a, btSolverBody& b, btSolverConstraint& c, boo
   u.internalApplyImpulse(n * u.internalGetInvMass(), ang, delta);
 }
 
+/// True when Bullet set the row up from the point's stiffness and damping (its own
+/// cfm/erp flags take precedence in setupContactConstraint).
+bool isSpringRow(const btSolverConstraint& c) {
+  const auto* point = static_cast<const btManifoldPoint*>(c.m_originalContactPoint);
+  if (point == nullptr) return false;
+  const int flags = point->m_contactPointFlags;
+  return (flags & BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING) != 0 &&
+         (flags & (BT_CONTACT_FLAG_HAS_CONTACT_CFM | BT_CONTACT_FLAG_HAS_CONTACT_ERP)) == 0;
+}
+
 }  // namespace
+
+void StackingSolver::convertContacts(btPersistentManifold** manifolds, int numManifolds,
+                                     const btContactSolverInfo& info) {
+  btSequentialImpulseConstraintSolver::convertContacts(manifolds, numManifolds, info);
+  // A split row's depth impulse is m_rhsPenetration and its velocity one m_rhs; unsplit,
+  // Bullet's rhs is their sum: a spring's force acts through the velocities again.
+  for (int i = 0; i < m_tmpSolverContactConstraintPool.size(); ++i) {
+    btSolverConstraint& c = m_tmpSolverContactConstraintPool[i];
+    if (c.m_rhsPenetration == btScalar(0) || !isSpringRow(c)) continue;
+    c.m_rhs += c.m_rhsPenetration;
+    c.m_rhsPenetration = btScalar(0);
+  }
+}
 
 btScalar StackingSolver::solveGroupCacheFriendlyIterations(
     btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds, int numManifolds,

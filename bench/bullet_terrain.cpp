@@ -128,14 +128,7 @@ void drop(const Terrain& terrain, sc::bullet::ContactModel model, bool ahead,
   auto box = closedShape(boxMesh());
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   auto add = [&](btCollisionShape* s, double mass, const btTransform& t) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) s->calculateLocalInertia(btScalar(mass), inertia);
-    btRigidBody::btRigidBodyConstructionInfo ci(btScalar(mass), nullptr, s, inertia);
-    ci.m_startWorldTransform = t;
-    bodies.push_back(std::make_unique<btRigidBody>(ci));
-    bodies.back()->setActivationState(DISABLE_DEACTIVATION);
-    w.world->addRigidBody(bodies.back().get());
-    return bodies.back().get();
+    return sc::demo::addBody(*w.world, bodies, s, mass, t);
   };
   add(&ground, 0.0, btTransform::getIdentity());
   btRigidBody* b =

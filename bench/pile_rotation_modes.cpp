@@ -67,13 +67,7 @@ Figures run(sc::RotationMode mode, const std::shared_ptr<sc::bullet::ScBulletSha
     std::vector<std::unique_ptr<btCollisionShape>> walls;
     std::vector<std::unique_ptr<btRigidBody>> bodies;
     auto add = [&](btCollisionShape* shape, double mass, const btTransform& pose) {
-      btVector3 inertia(0, 0, 0);
-      if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
-      btRigidBody::btRigidBodyConstructionInfo ci(btScalar(mass), nullptr, shape, inertia);
-      ci.m_startWorldTransform = pose;
-      bodies.push_back(std::make_unique<btRigidBody>(ci));
-      bodies.back()->setActivationState(DISABLE_DEACTIVATION);
-      w.world->addRigidBody(bodies.back().get());
+      sc::demo::addBody(*w.world, bodies, shape, mass, pose);
     };
     for (const sc::demo::PileWall& wall : sc::demo::pileWalls()) {
       walls.push_back(std::make_unique<btBoxShape>(wall.half_extents));

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <vector>
 
 #include "smartcollision/bullet/bullet.h"
 
@@ -74,5 +75,20 @@ struct BulletWorld {
     solver = s ? std::move(s) : std::make_unique<btSequentialImpulseConstraintSolver>();
   }
 };
+
+/// A rigid body over `shape` at `pose` (dynamic when mass > 0; never deactivated, so
+/// that measurements see the model), added to `world` and owned by `bodies`.
+inline btRigidBody* addBody(btDynamicsWorld& world,
+                            std::vector<std::unique_ptr<btRigidBody>>& bodies,
+                            btCollisionShape* shape, double mass, const btTransform& pose) {
+  btVector3 inertia(0, 0, 0);
+  if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
+  btRigidBody::btRigidBodyConstructionInfo ci(btScalar(mass), nullptr, shape, inertia);
+  ci.m_startWorldTransform = pose;
+  bodies.push_back(std::make_unique<btRigidBody>(ci));
+  bodies.back()->setActivationState(DISABLE_DEACTIVATION);
+  world.addRigidBody(bodies.back().get());
+  return bodies.back().get();
+}
 
 }  // namespace sc::demo

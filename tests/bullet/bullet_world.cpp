@@ -69,6 +69,22 @@ double BulletWorld::kineticEnergy() const {
   return e;
 }
 
+double closestDistance(BulletWorld& w, btCollisionObject* a, btCollisionObject* b,
+                       double threshold) {
+  struct Callback : btCollisionWorld::ContactResultCallback {
+    double distance = std::nan("");
+    btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int,
+                             const btCollisionObjectWrapper*, int, int) override {
+      const double d = double(cp.getDistance());
+      if (std::isnan(distance) || d < distance) distance = d;
+      return 0;
+    }
+  } callback;
+  callback.m_closestDistanceThreshold = btScalar(threshold);
+  w.world->contactPairTest(a, b, callback);
+  return callback.distance;
+}
+
 std::shared_ptr<bullet::ScBulletShape> boxShape(const btVector3& h) {
   Result<std::shared_ptr<bullet::ScBulletShape>> s = bullet::ScBulletShape::create(
       ModelKind::ClosedPolyhedron, boxMesh(Vec3(h.x(), h.y(), h.z())));

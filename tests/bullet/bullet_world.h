@@ -99,6 +99,11 @@ inline const char* modeName(RotationMode m) {
 /// measured independently of SmartCollision.
 double boxCornerDepth(const btRigidBody& a, const btRigidBody* b, double half);
 
+/// Closest distance of a pair through Bullet's contactPairTest (the closest-points
+/// table), or NaN when nothing was reported within `threshold`.
+double closestDistance(BulletWorld& w, btCollisionObject* a, btCollisionObject* b,
+                       double threshold = 2.0);
+
 /// An ScBulletShape of a closed box mesh (half extents h); fails the test on error.
 std::shared_ptr<bullet::ScBulletShape> boxShape(const btVector3& h);
 

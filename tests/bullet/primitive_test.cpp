@@ -19,24 +19,6 @@ using bullet::ContactModel;
 // Bullet is built in single precision: its transforms carry ~1e-7 relative error.
 constexpr double kExact = 2e-5;
 
-/// Closest distance of a pair through Bullet's contactPairTest (the closest-points
-/// table), or NaN when nothing was reported within `threshold`.
-double closestDistance(BulletWorld& w, btCollisionObject* a, btCollisionObject* b,
-                       double threshold = 2.0) {
-  struct Callback : btCollisionWorld::ContactResultCallback {
-    double distance = std::nan("");
-    btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int,
-                             const btCollisionObjectWrapper*, int, int) override {
-      const double d = double(cp.getDistance());
-      if (std::isnan(distance) || d < distance) distance = d;
-      return 0;
-    }
-  } callback;
-  callback.m_closestDistanceThreshold = btScalar(threshold);
-  w.world->contactPairTest(a, b, callback);
-  return callback.distance;
-}
-
 /// A static SmartCollision box of half extents (5, 0.5, 5) whose top face is y = 0.
 btRigidBody* addMeshGround(BulletWorld& w) {
   return w.addBody(boxShape(btVector3(5, 0.5, 5)), 0.0, btVector3(0, -0.5, 0));

@@ -350,23 +350,6 @@ TEST(TriangleMeshModel, BadMeshesGiveAStatusNotAModel) {
   EXPECT_EQ(w.plugin->stats().pairs, 0);
 }
 
-/// Closest distance of a pair through Bullet's contactPairTest (the closest-points
-/// table), or NaN when nothing was reported within `threshold`.
-double closestDistance(BulletWorld& w, btCollisionObject* a, btCollisionObject* b) {
-  struct Callback : btCollisionWorld::ContactResultCallback {
-    double distance = std::nan("");
-    btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int,
-                             const btCollisionObjectWrapper*, int, int) override {
-      const double d = double(cp.getDistance());
-      if (std::isnan(distance) || d < distance) distance = d;
-      return 0;
-    }
-  } callback;
-  callback.m_closestDistanceThreshold = 2;
-  w.world->contactPairTest(a, b, callback);
-  return callback.distance;
-}
-
 // The closest-points table in both orders: a 0.2 m box above a flat 2 x 2 m mesh at
 // y = 0.1, plain (0.15 to the face) and scaled by (0.5, 2, 1) (the plane at
 // y = 0.2 ends at x = 0.5, 0.1 short of the box's side: the edges 0.1 across and

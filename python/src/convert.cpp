@@ -106,9 +106,9 @@ sc::MeshData meshFrom(const py::handle& vertices, const py::handle& triangles) {
   const long long* pt = t.data();
   for (size_t i = 0; i < 3 * mesh.triangles.size(); ++i) {
     // Out-of-range indices that fit an int are left to the library's check.
-    if (pt[i] < INT_MIN || pt[i] > INT_MAX) {
-      fail(sc::ErrorCode::InvalidArgument,
-           "triangles: index " + std::to_string(pt[i]) + " out of range");
+    if (pt[i] < INT_MIN || pt[i] > INT_MAX) {  // where, not the value: int64 may wrap it
+      fail(sc::ErrorCode::InvalidArgument, "triangles: index at [" + std::to_string(i / 3) + ", " +
+                                               std::to_string(i % 3) + "] out of range");
     }
     mesh.triangles[i / 3][static_cast<int>(i % 3)] = static_cast<int>(pt[i]);
   }
@@ -127,7 +127,12 @@ sc::Vec3 vec3From(const py::handle& value, const char* what) {
 }
 
 sc::Placement placementFrom(const py::handle& pose, const sc::Vec3& local_center) {
-  if ((py::isinstance<py::tuple>(pose) || py::isinstance<py::list>(pose)) && py::len(pose) == 2) {
+  constexpr const char* kForms =
+      "expected a position (3,), position + quaternion (7,), a pair or a 4x4 matrix";
+  if (pose.is_none()) fail(sc::ErrorCode::InvalidArgument, std::string("pose: None, ") + kForms);
+  // A pair holds two sequences; [1, 0] is a (too short) position.
+  if ((py::isinstance<py::tuple>(pose) || py::isinstance<py::list>(pose)) && py::len(pose) == 2 &&
+      py::hasattr(py::reinterpret_borrow<py::sequence>(pose)[0], "__len__")) {
     const py::sequence pair = py::reinterpret_borrow<py::sequence>(pose);
     const sc::Vec3 origin = vec3From(pair[0], "pose position");
     const Doubles q = doublesFrom(pair[1], "pose quaternion");
@@ -146,9 +151,7 @@ sc::Placement placementFrom(const py::handle& pose, const sc::Vec3& local_center
   if (a.ndim() == 1 && a.shape(0) == 7)
     return placed({d[0], d[1], d[2]}, quatFrom(d + 3), local_center);
   if (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4) return fromMatrix(d, local_center);
-  fail(sc::ErrorCode::InvalidArgument,
-       "pose: shape " + shapeOf(a) +
-           ", expected a position (3,), position + quaternion (7,), a pair or a 4x4 matrix");
+  fail(sc::ErrorCode::InvalidArgument, "pose: shape " + shapeOf(a) + ", " + kForms);
 }
 
 py::array_t<double> toArray(const sc::Vec3& v) {

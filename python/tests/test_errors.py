@@ -71,6 +71,25 @@ def test_bad_pose(pose, error):
     assert tracker.distance([0, 0, 2.5], [0, 0, 0]) == pytest.approx(0.5)
 
 
+@pytest.mark.parametrize("pose, words", [
+    ([1, 0], r"shape \(2,\)"),       # a short position, not a (position, quaternion) pair
+    (None, "None"),
+    (([0, 0, 3], [1, 0, 0]), "quaternion"),
+])
+def test_bad_pose_says_what_is_wrong(pose, words):
+    m = sc.Model(*box())
+    with pytest.raises(sc.InvalidArgumentError, match=words):
+        sc.PairTracker(m, m).distance(pose, [0, 0, 0])
+
+
+def test_huge_unsigned_index_says_where():
+    v, t = box()
+    t = t.astype(np.uint64)
+    t[2, 1] = 2**63
+    with pytest.raises(sc.InvalidArgumentError, match=r"index at \[2, 1\] out of range"):
+        sc.Model(v, t)
+
+
 def test_bad_settings():
     m = sc.Model(*box())
     with pytest.raises(sc.InvalidArgumentError, match="tolerance"):

@@ -2,7 +2,6 @@
 #include "penetration/initial_resolution.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "geometry/math_util.h"
 #include "penetration/contact_qp.h"
@@ -50,7 +49,8 @@ Vec3 smallestExit(const ResolutionScratch& s) {
 
 bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
                                 const PairSettings& settings, Rigid& free_pose,
-                                ResolutionScratch& scratch, double max_depth) {
+                                ResolutionScratch& scratch, double max_depth,
+                                const LeafContact* first) {
   constexpr int max_rounds = 32;
   // The exit keeps a gap of half the tolerance, so the proxy starts clearly free.
   const double skin = 0.5 * settings.tolerance;
@@ -58,9 +58,7 @@ bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
   scratch.offsets.clear();
   // Bounded: one intersecting pair deeper than the bound settles it before every
   // intersecting pair is gathered (thousands in a deep overlap of two large meshes).
-  LeafContact first;
-  if (std::isfinite(max_depth) && query.intersects(goal, &first) &&
-      leafExit(query, first, goal, scratch.depth).depth > max_depth)
+  if (first != nullptr && leafExit(query, *first, goal, scratch.depth).depth > max_depth)
     return false;
   Vec3 t = Vec3::Zero();
   for (int round = 0; round < max_rounds; ++round) {

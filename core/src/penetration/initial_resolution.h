@@ -27,9 +27,12 @@ struct ResolutionScratch {
 /// @return true with `free_pose` = goal translated by t, a pose where no leaf pair
 ///   intersects; false when no free pose was found within 32 rounds, or as soon as
 ///   an exit deeper than `max_depth` is met (a pose beyond touching, when the caller
-///   only accepts one within the tolerance of it).
+///   only accepts one within the tolerance of it). `first`: an intersecting leaf pair
+///   at `goal` already known, measured first (a deep one settles a bounded call before
+///   every intersecting pair is gathered).
 bool resolveInitialIntersection(GroupPairQuery& query, const Rigid& goal,
                                 const PairSettings& settings, Rigid& free_pose,
-                                ResolutionScratch& scratch, double max_depth = kInfinity);
+                                ResolutionScratch& scratch, double max_depth = kInfinity,
+                                const LeafContact* first = nullptr);
 
 }  // namespace sc::detail

@@ -124,8 +124,9 @@ void startTouching(PairState& state, int dir, const Rigid& goal, const PairSetti
   GroupPairQuery& query = state.query[dir];
   Rigid free_pose;
   ProxyOutcome touching;
+  // The tracker's intersection test just met that pair at this goal.
   if (!resolveInitialIntersection(query, goal, settings, free_pose, state.resolution,
-                                  settings.tolerance) ||
+                                  settings.tolerance, &state.tracker[dir].firstIntersecting()) ||
       !query.distance(free_pose, kInfinity, touching.contact))
     return;
   touching.code = ErrorCode::Ok;

@@ -233,7 +233,7 @@ void ProxyTracker::update(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   out = ProxyOutcome();
   rows_current_ = false;  // seeded normals follow previous_proxy_, which moves on
   if (!tracking_) {
-    if (query.intersects(goal)) {
+    if (query.intersects(goal, &first_intersecting_)) {
       out.code = ErrorCode::InvalidInitialTransformation;
       return;
     }

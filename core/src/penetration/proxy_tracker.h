@@ -69,6 +69,9 @@ class ProxyTracker {
   /// The proxy (o_from_t) and whether it was penetrating after the last update.
   const Rigid& proxy() const { return proxy_; }
   bool penetrating() const { return penetrating_; }
+  /// The first intersecting leaf pair the last update met, when it refused a goal
+  /// first seen intersecting (InvalidInitialTransformation).
+  const LeafContact& firstIntersecting() const { return first_intersecting_; }
 
  private:
   struct Row {
@@ -131,6 +134,7 @@ class ProxyTracker {
   Vec3 seedNormal(GroupPairQuery& query, const LeafContact& c) const;
 
   bool tracking_ = false;
+  LeafContact first_intersecting_;
   bool penetrating_ = false;
   bool ran_out_ = false;  ///< the last slide or turn used all its iterations
   Rigid proxy_;           ///< o_from_t of the proxy

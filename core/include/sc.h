@@ -210,7 +210,8 @@ class SC_API SCSceneManager {
   SCint GetAttributeEnum(SCenum attribute, SCenum* value) const;
 
   SCint UpdateStatus();
-  /// SC_STATUS_COUNT: the number of listed pairs.
+  /// The last UpdateStatus's results, unchanged until the next one (a deleted
+  /// object's pair included). SC_STATUS_COUNT: the number of listed pairs.
   SCint GetStatus(SCenum type, SCint* value);
   SCint GetStatus(SCenum type, SCint* value, SCint index, SCbool reverseFlag);
   /// A value beyond float's range gives SC_ERROR_INVALID_ARGUMENT (read it as double).

@@ -1,10 +1,35 @@
 # SPDX-License-Identifier: MIT
-"""The contacts of a pair touching at distance 0 (docs/api.md, "Contact points")."""
+"""A scene's results between two updates, and the contacts of a pair touching at
+distance 0 (docs/python.md)."""
 import numpy as np
 import pytest
 
 import smartcollision as sc
 from conftest import box
+
+
+def test_results_of_a_removed_object_stay_until_the_next_update():
+    cube = sc.Model(*box(0.5, 0.5, 0.5))
+    scene = sc.Scene()
+    scene.add_object(1, cube, [0, 0, 3], center=[0.1, 0.2, 0])
+    scene.add_object(2, cube)
+    scene.add_to_group(10, 1)
+    assert scene.update() == 1
+    before, first = scene.results(), scene.result(0, 0)
+    scene.remove_object(1)
+    assert not scene.has_group(10)
+    # The last update's pair, as results() and result() both read it.
+    after = scene.results()
+    for name, values in before.items():
+        np.testing.assert_array_equal(after[name], values, err_msg=name)
+    stale = scene.result(0, 0)
+    assert stale.distance == first.distance == pytest.approx(2.0)
+    assert stale.target_object == 1
+    np.testing.assert_array_equal(stale.contact_pose, first.contact_pose)
+    assert len(scene.contacts(0, 0)["separation"]) == 0  # contact_points is off
+    assert scene.update() == 0
+    with pytest.raises(IndexError):
+        scene.result(0, 0)
 
 
 @pytest.mark.parametrize("gap", [0.0, 1e-12, -1e-12])

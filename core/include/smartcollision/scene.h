@@ -82,7 +82,8 @@ class SC_API Scene {
 
   /// Computes every listed pair for the current placements.
   Status update();
-  /// The pairs of the last update.
+  /// The pairs of the last update, unchanged until the next one: a pair whose object
+  /// or group was deleted since keeps its results (ids now unknown included).
   const std::vector<PairStatus>& pairs() const;
 
  private:

@@ -185,6 +185,9 @@ class SC_API SCSceneManager {
   /// `object` is not owned and must outlive its membership.
   SCint AddObject(SCint id, SCObject* object);
   SCint DeleteObject(SCint id);
+  /// An object already in another group moves to gid, staying where it is (its old
+  /// group goes with its last object; both groups' pairs restart). Its own group again:
+  /// nothing changes.
   SCint AddObjectToGroup(SCint gid, SCint id);
   SCint DeleteObjectFromGroup(SCint gid, SCint id);
   SCint DeleteFromGroup(SCint gid, SCint id);  ///< spelling of manual List 8-6

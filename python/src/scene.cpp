@@ -155,7 +155,9 @@ void bindGroups(py::class_<PyScene>& c) {
        "add_to_group",
        [](PyScene& s, int gid, int id) { check(s.idle().addObjectToGroup(gid, id)); },
        py::arg("group"), py::arg("id"),
-       "Moves an object into a rigid group (created with it; its frame is its first object's).")
+       "Moves an object into a rigid group (created with it; its frame is its first object's),\n"
+       "from the static group or another group (gone with its last object); it stays where\n"
+       "it is. Its own group again: nothing changes.")
       .def(
           "remove_from_group",
           [](PyScene& s, int gid, int id) { check(s.idle().removeObjectFromGroup(gid, id)); },

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""A scene's results between two updates, and the contacts of a pair touching at
-distance 0 (docs/python.md)."""
+"""A scene's results between two updates, add_to_group on an object already in a
+group, and the contacts of a pair touching at distance 0 (docs/python.md)."""
 import numpy as np
 import pytest
 
@@ -30,6 +30,23 @@ def test_results_of_a_removed_object_stay_until_the_next_update():
     assert scene.update() == 0
     with pytest.raises(IndexError):
         scene.result(0, 0)
+
+
+def test_add_to_group_moves_an_object_from_another_group():
+    cube = sc.Model(*box(0.5, 0.5, 0.5))
+    scene = sc.Scene()
+    scene.add_object(1, cube, [0, 0, 3])
+    scene.add_to_group(5, 1)
+    scene.set_group_pose(5, [1, 2, 3])
+    pose = scene.object_pose(1)
+    scene.add_to_group(6, 1)
+    assert scene.group_of(1) == 6
+    assert not scene.has_group(5)
+    np.testing.assert_allclose(scene.object_pose(1), pose, atol=1e-12)
+    scene.add_to_group(6, 1)  # its own group again: nothing changes
+    assert scene.group_of(1) == 6
+    with pytest.raises(sc.InvalidIdError):
+        scene.remove_from_group(5, 1)
 
 
 @pytest.mark.parametrize("gap", [0.0, 1e-12, -1e-12])

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Changes between two updates (docs/api.md, "Scene, groups and activities" and
 // "Results"): the last update's results stay as they were until the next update,
-// a removed object's included, in sc.h and in the modern Scene alike.
+// a removed object's included, in sc.h and in the modern Scene alike; and
+// AddObjectToGroup on an object already in another group moves it there.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -102,6 +103,57 @@ TEST(SceneChangesBetweenUpdates, SceneResultsOfARemovedObjectStayUntilTheNextUpd
   EXPECT_EQ(scene.pairs()[0].results[0].target_object, 1);
   ASSERT_TRUE(scene.update().ok());
   EXPECT_TRUE(scene.pairs().empty());
+}
+
+TEST(SceneChangesBetweenUpdates, AddObjectToGroupMovesAnObjectFromAnotherGroup) {
+  TwoCubes s;
+  s.moveTo(0.0, 0.5);
+  double before[16], after[16];
+  ASSERT_EQ(s.o1->GetTransformation(SC_TRANSFORMATION_MATRIX, before), SC_NO_ERROR);
+  ASSERT_EQ(s.manager.AddObjectToGroup(7, 1), SC_NO_ERROR);
+  // It stays where it is, now in group 7 alone; group 0 lost its last object.
+  ASSERT_EQ(s.o1->GetTransformation(SC_TRANSFORMATION_MATRIX, after), SC_NO_ERROR);
+  for (int i = 0; i < 16; ++i) EXPECT_NEAR(after[i], before[i], 1e-12) << i;
+  double origin[3];
+  EXPECT_EQ(s.manager.GetTransformation(0, SC_POSITION_ORIGIN, origin), SC_ERROR_INVALID_ID);
+  EXPECT_EQ(s.manager.DeleteObjectFromGroup(0, 1), SC_ERROR_INVALID_ID);
+  // Group 7 moves it now.
+  const double up[3] = {0.0, 0.0, 2.0};
+  ASSERT_EQ(s.manager.SetTransformation(7, SC_POSITION_ORIGIN, up), SC_NO_ERROR);
+  ASSERT_EQ(s.o1->GetTransformation(SC_TRANSFORMATION_MATRIX, after), SC_NO_ERROR);
+  EXPECT_NEAR(after[14], 2.0, 1e-12);
+  ASSERT_EQ(s.manager.UpdateStatus(), SC_NO_ERROR);
+  ASSERT_EQ(s.count(), 1);
+  SCint groups[2];
+  ASSERT_EQ(s.manager.GetStatus(SC_GROUP_ID, groups, 0, false), SC_NO_ERROR);
+  EXPECT_EQ(groups[0], 7);
+  EXPECT_EQ(s.manager.DeleteObjectFromGroup(7, 1), SC_NO_ERROR);
+}
+
+TEST(SceneChangesBetweenUpdates, AddObjectToGroupKeepsOrDropsTheTrackingState) {
+  // Group 0 slides from apart into the static cube by 0.1: a depth, followed.
+  for (const bool move : {false, true}) {
+    SCOPED_TRACE(move ? "moved to group 7" : "added to its own group again");
+    TwoCubes s;
+    s.moveTo(0.5, 0.0);
+    ASSERT_EQ(s.manager.UpdateStatus(), SC_NO_ERROR);
+    s.moveTo(1.1, 0.0);
+    ASSERT_EQ(s.manager.UpdateStatus(), SC_NO_ERROR);
+    SCint result = -1;
+    ASSERT_EQ(s.manager.GetStatus(SC_STATUS_RESULT, &result, 0, false), SC_NO_ERROR);
+    ASSERT_EQ(result, SC_NO_ERROR);
+    // Again into its own group: nothing changes. Into another: the object leaves its
+    // pairs, and the new group's pair is first seen intersecting.
+    ASSERT_EQ(s.manager.AddObjectToGroup(move ? 7 : 0, 1), SC_NO_ERROR);
+    ASSERT_EQ(s.manager.UpdateStatus(), SC_NO_ERROR);
+    ASSERT_EQ(s.manager.GetStatus(SC_STATUS_RESULT, &result, 0, false), SC_NO_ERROR);
+    EXPECT_EQ(result, move ? SC_ERROR_INVALID_INITIAL_TRANSFORMATION : SC_NO_ERROR);
+    double distance = 0.0;
+    if (!move) {
+      ASSERT_EQ(s.manager.GetStatus(SC_DISTANCE, &distance, 0, false), SC_NO_ERROR);
+      EXPECT_NEAR(distance, -0.1, 1e-6);
+    }
+  }
 }
 
 }  // namespace

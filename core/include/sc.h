@@ -185,6 +185,9 @@ class SC_API SCSceneManager {
   /// `object` is not owned and must outlive its membership.
   SCint AddObject(SCint id, SCObject* object);
   SCint DeleteObject(SCint id);
+  /// An object already in another group moves to gid, staying where it is (its old
+  /// group goes with its last object; both groups' pairs restart). Its own group again:
+  /// nothing changes.
   SCint AddObjectToGroup(SCint gid, SCint id);
   SCint DeleteObjectFromGroup(SCint gid, SCint id);
   SCint DeleteFromGroup(SCint gid, SCint id);  ///< spelling of manual List 8-6
@@ -210,7 +213,8 @@ class SC_API SCSceneManager {
   SCint GetAttributeEnum(SCenum attribute, SCenum* value) const;
 
   SCint UpdateStatus();
-  /// SC_STATUS_COUNT: the number of listed pairs.
+  /// The last UpdateStatus's results, unchanged until the next one (a deleted
+  /// object's pair included). SC_STATUS_COUNT: the number of listed pairs.
   SCint GetStatus(SCenum type, SCint* value);
   SCint GetStatus(SCenum type, SCint* value, SCint index, SCbool reverseFlag);
   /// A value beyond float's range gives SC_ERROR_INVALID_ARGUMENT (read it as double).

@@ -3,6 +3,7 @@
 // the pairs' results as numpy arrays.
 #include <pybind11/stl.h>
 
+#include <array>
 #include <limits>
 #include <string>
 #include <utility>
@@ -16,6 +17,9 @@ struct PyScene {
   explicit PyScene(sc::ModelKind kind) : scene(kind) {}
   sc::Scene scene;
   bool busy = false;
+  /// Each listed pair's target centres (model frame) at the last update: its results
+  /// stay readable after a group is gone (removed objects) until the next update.
+  std::vector<std::array<sc::Vec3, 2>> centers;
 
   /// The scene, after checking no update runs on another thread.
   sc::Scene& idle() {
@@ -30,6 +34,7 @@ struct PyScene {
     }
     return pairs[static_cast<size_t>(index)];
   }
+  void keepCenters();
 };
 
 template <class T>
@@ -46,6 +51,18 @@ int direction(int d) {
 sc::Vec3 centerOf(PyScene& s, int gid) {
   if (gid == sc::kStaticGroup) return sc::Vec3::Zero();
   return valueOf(s.scene.groupPlacement(gid)).local_center;
+}
+
+void PyScene::keepCenters() {
+  const auto& pairs = scene.pairs();
+  centers.resize(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    for (int d = 0; d < 2; ++d) {
+      const int gid = pairs[i].groups[d];
+      const sc::Result<sc::Placement> p = scene.groupPlacement(gid);
+      centers[i][d] = gid != sc::kStaticGroup && p.ok() ? p.value().local_center : sc::Vec3::Zero();
+    }
+  }
 }
 
 /// Rows of a (n, 2, k) array written from each direction's result.
@@ -138,7 +155,9 @@ void bindGroups(py::class_<PyScene>& c) {
        "add_to_group",
        [](PyScene& s, int gid, int id) { check(s.idle().addObjectToGroup(gid, id)); },
        py::arg("group"), py::arg("id"),
-       "Moves an object into a rigid group (created with it; its frame is its first object's).")
+       "Moves an object into a rigid group (created with it; its frame is its first object's),\n"
+       "from the static group or another group (gone with its last object); it stays where\n"
+       "it is. Its own group again: nothing changes.")
       .def(
           "remove_from_group",
           [](PyScene& s, int gid, int id) { check(s.idle().removeObjectFromGroup(gid, id)); },
@@ -182,6 +201,7 @@ void bindUpdate(py::class_<PyScene>& c) {
            py::gil_scoped_release release;
            status = s.scene.update();
          }
+         s.keepCenters();
          check(status);
          return s.scene.pairs().size();
        },
@@ -196,13 +216,15 @@ groups (n, 2): direction d has groups[i, d] as target (the static group is
 always groups[i, 1]); status (n, 2) Status values; distance (n, 2); normal,
 point_on_target, point_on_opponent, tpdv, rpdv, contact_position (n, 2, 3);
 contact_orientation (n, 2, 4) w, x, y, z; target_object, opponent_object,
-target_piece, opponent_piece (n, 2). Floats are NaN where status is not OK.)")
+target_piece, opponent_piece (n, 2). Floats are NaN where status is not OK.
+They stay as they were until the next update (result() and contacts() too), a
+removed object's pair included.)")
       .def(
           "result",
           [](PyScene& s, int index, int d) {
             const sc::PairStatus& p = s.pair(index);
             const int dir = direction(d);  // checked before either array is read
-            return resultOf(p.results[dir], centerOf(s, p.groups[dir]));
+            return resultOf(p.results[dir], s.centers[static_cast<size_t>(index)][dir]);
           },
           py::arg("index"), py::arg("direction") = 0, "One direction of one pair as a Result.")
       .def(

@@ -85,6 +85,47 @@ TEST(ContactPointsStatus, OnListsTheContactOfBothDirections) {
   }
 }
 
+// Set down exactly flush (distance 0, SC_DIRECTION_TOUCHING), first seen or followed
+// there: the contact of the two faces, on the bottom cube's top face.
+TEST(ContactPointsStatus, TouchingAtDistanceZeroListsItsContact) {
+  for (const bool followed : {false, true}) {
+    SCOPED_TRACE(followed ? "followed from above" : "first seen");
+    PressedCubes s(true);
+    const double above[3] = {0.2, 0.1, 1.5}, flush[3] = {0.2, 0.1, 1.0};
+    ASSERT_EQ(s.manager.SetTransformation(1, SC_POSITION_ORIGIN, above), SC_NO_ERROR);
+    ASSERT_EQ(s.manager.UpdateStatus(), SC_NO_ERROR);
+    // INACTIVE, moved, ACTIVE: a teleport, the pair is first seen flush.
+    if (!followed) {
+      ASSERT_EQ(s.manager.SetActivityGroup(1, SC_ACTIVITY_INACTIVE), SC_NO_ERROR);
+    }
+    ASSERT_EQ(s.manager.SetTransformation(1, SC_POSITION_ORIGIN, flush), SC_NO_ERROR);
+    if (!followed) {
+      ASSERT_EQ(s.manager.SetActivityGroup(1, SC_ACTIVITY_ACTIVE), SC_NO_ERROR);
+    }
+    ASSERT_EQ(s.manager.UpdateStatus(), SC_NO_ERROR);
+    SCint status = -1, count = -1;
+    ASSERT_EQ(s.manager.GetStatus(SC_DIRECTION_STATUS, &status, 0, false), SC_NO_ERROR);
+    // Followed, the proxy may stop a rounding short of flush: a depth of ~1e-13.
+    if (followed) {
+      EXPECT_TRUE(status == SC_DIRECTION_TOUCHING || status == SC_DIRECTION_PENETRATING);
+    } else {
+      EXPECT_EQ(status, SC_DIRECTION_TOUCHING);
+    }
+    ASSERT_EQ(s.manager.GetStatus(SC_CONTACT_POINT_COUNT, &count, 0, false), SC_NO_ERROR);
+    ASSERT_EQ(count, 1);
+    double distance = -1.0, p[10];
+    ASSERT_EQ(s.manager.GetStatus(SC_DISTANCE, &distance, 0, false), SC_NO_ERROR);
+    EXPECT_NEAR(distance, 0.0, 1e-9);
+    ASSERT_EQ(s.manager.GetStatus(SC_CONTACT_POINTS, p, 0, false), SC_NO_ERROR);
+    EXPECT_NEAR(p[2], 1.0, 1e-9);  // on the top cube's bottom face
+    EXPECT_NEAR(p[5], 1.0, 1e-9);  // on the bottom cube's top face
+    EXPECT_NEAR(p[8], 1.0, 1e-9);  // normal +z
+    EXPECT_NEAR(p[9], 0.0, 1e-9);  // separation
+    EXPECT_TRUE(p[3] >= 0.2 - 1e-9 && p[3] <= 1.0 + 1e-9 && p[4] >= 0.1 - 1e-9 &&
+                p[4] <= 1.0 + 1e-9);
+  }
+}
+
 // SC_DIRECTION_STATUS (extension): the pressed cube penetrates; above the other cube
 // it is separated; set down within the tolerance (1e-3) of it, it touches; the static
 // group's direction is not computed. (Exactly flush, distance 0 and no depth: the

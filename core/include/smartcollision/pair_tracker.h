@@ -116,10 +116,11 @@ class SC_API PairTracker {
 
   /// Every contact of direction 0 or 1 of the last update: leaf pairs within
   /// `threshold` (>= 0) of each other at the reported contact configuration (the
-  /// closest points when apart), nearest first; empty when the direction reported
-  /// no Ok result. Leaf pairs still overlapping by more than half the tolerance at
-  /// the contact configuration (a lagging proxy) are left out. Call it after
-  /// update(), before the groups' parts change.
+  /// closest points when apart), nearest first, one point per leaf pair; empty when
+  /// the direction reported no Ok result. A pair in contact (a depth, or Touching at
+  /// distance 0) is measured with the target lifted off by half the tolerance: leaf
+  /// pairs still overlapping by more than that (a lagging proxy, a first sight that
+  /// deep) are left out. Call it after update(), before the groups' parts change.
   void contactPoints(int direction, double threshold, std::vector<ContactPoint>& out);
 
   /// Drops the tracking state of direction 0 (a target) or 1 (b target).

@@ -53,6 +53,9 @@ class SC_API Scene {
   Result<int> groupOf(int id) const;
 
   // Groups. A group exists while it has objects; its frame is its first object's.
+  /// An object in another group moves to `gid`: it stays where it is, its old group
+  /// goes if it was its last object, and both groups' pairs lose their tracking
+  /// state. Its own group again: nothing changes.
   Status addObjectToGroup(int gid, int id);
   /// The object stays where it is and returns to the static group.
   Status removeObjectFromGroup(int gid, int id);
@@ -82,7 +85,8 @@ class SC_API Scene {
 
   /// Computes every listed pair for the current placements.
   Status update();
-  /// The pairs of the last update.
+  /// The pairs of the last update, unchanged until the next one: a pair whose object
+  /// or group was deleted since keeps its results (ids now unknown included).
   const std::vector<PairStatus>& pairs() const;
 
  private:

@@ -252,13 +252,15 @@ void PairTracker::contactPoints(int direction, double threshold, std::vector<Con
   detail::PairState& s = *state_;
   const detail::ProxyOutcome& o = s.last[dir];
   if (o.code != ErrorCode::Ok || !(threshold >= 0.0)) return;
-  // Leaves touching at the contact pose have no closest points: measure them lifted
-  // off by half the tolerance along the normal. Apart, the closest pair counts even
+  // Leaves touching at the contact pose (a depth, or a Touching result at distance
+  // 0: both count as intersecting) have no closest points: measure them lifted off
+  // by half the tolerance along the normal. Apart, the closest pair counts even
   // beyond the threshold, so a consumer always has the point the result names.
-  const double lift = o.penetrating ? 0.5 * s.tolerance[dir] : 0.0;
+  const bool in_contact = o.penetrating || !(o.distance > 0.0);
+  const double lift = in_contact ? 0.5 * s.tolerance[dir] : 0.0;
   Rigid probe = o.contact_pose;
   probe.translation += lift * o.contact.normal;
-  const double probe_threshold = std::max(threshold, o.penetrating ? 0.0 : o.distance) + lift;
+  const double probe_threshold = std::max(threshold, in_contact ? 0.0 : o.distance) + lift;
   s.query[dir].contacts(probe, probe_threshold, s.leaf_contacts);
   for (const detail::LeafContact& c : s.leaf_contacts) {
     if (c.intersecting) continue;  // deeper than the lift: a lagging proxy; skipped

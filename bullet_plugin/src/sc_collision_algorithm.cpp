@@ -503,6 +503,13 @@ void ScCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
 
 namespace {
 
+/// True when patch `c`'s rows are all corners of convex pieces (its support polygon).
+bool cornersOnly(const detail::ContactCluster& c) {
+  for (int k = 0; k < c.point_count; ++k)
+    if (!c.points[static_cast<std::size_t>(k)].exact) return false;
+  return c.point_count > 0;
+}
+
 /// True when manifold `m` holds rows of patch `c`'s normal.
 bool sameNormal(const btPersistentManifold* m, const detail::ContactCluster& c) {
   return m != nullptr && m->getNumContacts() > 0 &&
@@ -674,6 +681,14 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   int rows = 0;
   for (const detail::ContactCluster& c : clusters_) {
     btPersistentManifold* m = manifoldFor(c, taken);
+    // A patch of corners is its whole support polygon: the points the motion since
+    // they were made has broken go before its rows come in. A full manifold makes room
+    // by dropping one of its points, which could be a new row while the broken ones
+    // went only after (a box sliding more than the breaking threshold in a step lost
+    // one or two of its four ground rows, and rocked). Leaf contacts' patches keep old
+    // points as support their rows may lack (dropStalePoints).
+    if (cornersOnly(c))
+      m->refreshContactPoints(wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform());
     result->setPersistentManifold(m);
     for (int k = 0; k < c.point_count; ++k) {
       const detail::RowCandidate& p = c.points[static_cast<std::size_t>(k)];

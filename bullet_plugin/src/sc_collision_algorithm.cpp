@@ -218,40 +218,83 @@ const Piece* pieceOf(const Side& s, int index) {
   return pieces[static_cast<std::size_t>(index)].get();
 }
 
-/// The support polygon of a convex target piece: its corners (at T's current pose
-/// moved by `shift`) within `threshold` of the opponent. Against a convex opponent
-/// piece the rows share its reference face (referenceFace) and a corner counts only
-/// within the threshold of the piece (a tilted box's corner on a face below leaves
-/// the face's other corners out; corners past the face's edges drop). Against a
-/// non-convex piece only a face feature's plane (through its contact point, normal
-/// n) is the opponent's surface.
-void addSupportCorners(const DirectedResult& r, const Side& t, const Side& o, const Vec3& shift,
-                       double threshold, std::vector<Vec3>& corners,
-                       std::vector<WorldPlane>& planes, std::vector<detail::RowPoint>& points) {
-  const Piece* tp = pieceOf(t, r.target_piece);
-  if (tp == nullptr || !wholeConvex(t)) return;
-  const Piece* op = pieceOf(o, r.opponent_piece);
-  // A piece of a decomposed model has virtual faces: no support plane of the solid.
-  const bool convex_opponent = op != nullptr && wholeConvex(o) && o.radius == 0.0 &&
-                               op->kind() == ModelKind::ClosedPolyhedron;
+/// The corners of convex piece `tp` of T (at T's current pose moved by `shift`) within
+/// `threshold` of convex piece `op` of O, each measured against O's reference face
+/// (referenceFace): a corner counts only within the threshold of the piece (a tilted
+/// box's corner on a face below leaves the face's other corners out; corners past the
+/// face's edges drop).
+void convexCorners(const Piece& tp, const Side& t, const Piece& op, const Side& o,
+                   const Vec3& shift, double threshold, std::vector<Vec3>& corners,
+                   std::vector<WorldPlane>& planes, std::vector<detail::RowPoint>& points) {
   const Rigid world_from_t = t.view.placement.worldFromLocal();
   corners.clear();
-  for (const Vec3& v : tp->mesh().vertices)
-    corners.push_back(world_from_t * v - t.radius * r.normal + shift);
-  if (!convex_opponent || t.radius > 0.0) {  // a rounded target's core is no polytope
-    if (r.opponent_feature.type != FeatureType::Face) return;
-    const WorldPlane face{r.normal, r.normal.dot(r.point_on_opponent)};
-    for (const Vec3& p : corners)
-      if (face.distance(p) < threshold)
-        points.push_back({p, face.normal, face.distance(p), false, true});
-    return;
-  }
-  facePlanes(*op, o.view.placement.worldFromLocal(), planes);
+  for (const Vec3& v : tp.mesh().vertices) corners.push_back(world_from_t * v + shift);
+  facePlanes(op, o.view.placement.worldFromLocal(), planes);
   const WorldPlane face = referenceFace(planes, corners);
   for (const Vec3& p : corners) {
     const double sep = face.distance(p);
     if (sep < threshold && convexSeparation(planes, p) < threshold)
       points.push_back({p, face.normal, sep, true, true});
+  }
+}
+
+/// O's piece of result `r` when T and O are both one convex polyhedral piece, not
+/// rounded (their corners are then measured against each other's faces); else null.
+const Piece* convexOpponent(const DirectedResult& r, const Side& t, const Side& o) {
+  const Piece* op = pieceOf(o, r.opponent_piece);
+  // A piece of a decomposed model has virtual faces: no support plane of the solid.
+  const bool convex = op != nullptr && wholeConvex(o) && wholeConvex(t) && o.radius == 0.0 &&
+                      t.radius == 0.0 && op->kind() == ModelKind::ClosedPolyhedron;
+  return convex ? op : nullptr;
+}
+
+/// The support polygon of a convex target piece: its corners (at T's current pose
+/// moved by `shift`) within `threshold` of the opponent. Against a convex opponent
+/// piece the rows share its reference face (convexCorners). Against a non-convex
+/// piece only a face feature's plane (through its contact point, normal n) is the
+/// opponent's surface.
+void addSupportCorners(const DirectedResult& r, const Side& t, const Side& o, const Vec3& shift,
+                       double threshold, std::vector<Vec3>& corners,
+                       std::vector<WorldPlane>& planes, std::vector<detail::RowPoint>& points) {
+  const Piece* tp = pieceOf(t, r.target_piece);
+  if (tp == nullptr || !wholeConvex(t)) return;
+  if (const Piece* op = convexOpponent(r, t, o)) {
+    convexCorners(*tp, t, *op, o, shift, threshold, corners, planes, points);
+    return;
+  }
+  // A rounded target's core is no polytope.
+  if (r.opponent_feature.type != FeatureType::Face) return;
+  const Rigid world_from_t = t.view.placement.worldFromLocal();
+  const WorldPlane face{r.normal, r.normal.dot(r.point_on_opponent)};
+  for (const Vec3& v : tp->mesh().vertices) {
+    const Vec3 p = world_from_t * v - t.radius * r.normal + shift;
+    if (face.distance(p) < threshold)
+      points.push_back({p, face.normal, face.distance(p), false, true});
+  }
+}
+
+/// The support polygon's other half when O is no target of the pair (static or
+/// kinematic: only dynamic bodies are targets), as rows of T: O's corners within
+/// `threshold` of T, measured against T's reference face (T moved by `shift`), as
+/// O's own direction gives them when O is dynamic. A face of O smaller than T's (a
+/// pusher's on a crate) has its corners there and none of T's: without them the rows
+/// stood at the one contact point the core reports, a corner of O's face, and a
+/// centred push turned T.
+void addOpponentCorners(const DirectedResult& r, const Side& t, const Side& o, const Vec3& shift,
+                        double threshold, std::vector<Vec3>& corners,
+                        std::vector<WorldPlane>& planes, std::vector<detail::RowPoint>& points) {
+  const Piece* op = convexOpponent(r, t, o);
+  const Piece* tp = pieceOf(t, r.target_piece);
+  if (o.dynamic || op == nullptr || tp == nullptr || tp->kind() != ModelKind::ClosedPolyhedron)
+    return;
+  const std::size_t first = points.size();
+  convexCorners(*op, o, *tp, t, -shift, threshold, corners, planes, points);
+  // Each is O's corner (moved by -shift) over T's face normal n: T's row is the
+  // corner's foot on that face (moved back by shift), along -n.
+  for (std::size_t i = first; i < points.size(); ++i) {
+    detail::RowPoint& p = points[i];
+    p.point += shift - p.separation * p.normal;
+    p.normal = -p.normal;
   }
 }
 
@@ -341,6 +384,7 @@ void gatherPoints(int dir, const Side& t, const Side& o, const Vec3& shift, doub
                   double tolerance, DirectionState& d) {
   const DirectedResult& r = d.rows_out[dir];
   addSupportCorners(r, t, o, shift, threshold, d.corners, d.planes, d.points);
+  addOpponentCorners(r, t, o, shift, threshold, d.corners, d.planes, d.points);
   const std::size_t exact = d.points.size();  // corner rows measured on a convex piece
   if (!wholeConvex(t)) {
     // Non-convex: the core's contacts within the threshold at the current pose, each
@@ -502,6 +546,13 @@ void ScCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
 }
 
 namespace {
+
+/// True when patch `c`'s rows are all corners of convex pieces (its support polygon).
+bool cornersOnly(const detail::ContactCluster& c) {
+  for (int k = 0; k < c.point_count; ++k)
+    if (!c.points[static_cast<std::size_t>(k)].exact) return false;
+  return c.point_count > 0;
+}
 
 /// True when manifold `m` holds rows of patch `c`'s normal.
 bool sameNormal(const btPersistentManifold* m, const detail::ContactCluster& c) {
@@ -674,6 +725,14 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   int rows = 0;
   for (const detail::ContactCluster& c : clusters_) {
     btPersistentManifold* m = manifoldFor(c, taken);
+    // A patch of corners is its whole support polygon: the points the motion since
+    // they were made has broken go before its rows come in. A full manifold makes room
+    // by dropping one of its points, which could be a new row while the broken ones
+    // went only after (a box sliding more than the breaking threshold in a step lost
+    // one or two of its four ground rows, and rocked). Leaf contacts' patches keep old
+    // points as support their rows may lack (dropStalePoints).
+    if (cornersOnly(c))
+      m->refreshContactPoints(wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform());
     result->setPersistentManifold(m);
     for (int k = 0; k < c.point_count; ++k) {
       const detail::RowCandidate& p = c.points[static_cast<std::size_t>(k)];

@@ -307,15 +307,18 @@ void addFaceCrossings(const std::vector<Vec3>& corners, const Piece& op, const R
     return PlaneVertex{e1.dot(p), e2.dot(p), face.distance(p), false};
   };
   int nt = 0, no = 0;
-  for (const Vec3& p : corners)
-    if (face.distance(p) < threshold && nt < kFaceCorners)
-      t[static_cast<std::size_t>(nt++)] = inPlane(p);
+  for (const Vec3& p : corners) {
+    if (!(face.distance(p) < threshold)) continue;
+    if (nt == kFaceCorners) return;  // a larger face keeps its corners only
+    t[static_cast<std::size_t>(nt++)] = inPlane(p);
+  }
   if (nt < 2) return;  // a corner alone is already a row
   // O's face lies on the plane up to the rounding of its vertices' placement.
   for (const Vec3& v : op.mesh().vertices) {
     const Vec3 q = world_from_o * v;
-    if (std::abs(face.distance(q)) < 1e-3 * threshold && no < kFaceCorners)
-      o[static_cast<std::size_t>(no++)] = inPlane(q);
+    if (!(std::abs(face.distance(q)) < 1e-3 * threshold)) continue;
+    if (no == kFaceCorners) return;
+    o[static_cast<std::size_t>(no++)] = inPlane(q);
   }
   nt = convexHull2(t, nt, a);
   no = convexHull2(o, no, a);

@@ -143,6 +143,45 @@ Motion jenga(bool bullet_boxes, bullet::ContactModel model, double hz, int layer
   return follow(w, top, seconds);
 }
 
+/// The world points on body B of the rows between `a` and `b` held in the dispatcher's
+/// manifolds after the last step.
+std::vector<btVector3> rowPoints(BulletWorld& w, const btCollisionObject* a,
+                                 const btCollisionObject* b) {
+  std::vector<btVector3> points;
+  for (int i = 0; i < w.dispatcher->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = w.dispatcher->getManifoldByIndexInternal(i);
+    const bool pair =
+        (m->getBody0() == a && m->getBody1() == b) || (m->getBody0() == b && m->getBody1() == a);
+    for (int k = 0; pair && k < m->getNumContacts(); ++k)
+      points.push_back(m->getContactPoint(k).getPositionWorldOnB());
+  }
+  return points;
+}
+
+TEST_P(CrossedFaces, RowsStandAtTheCornersOfTheCrossing) {
+  // Analytic: planks 0.25 m wide crossed at 90 degrees touch in the square |x|, |z| <=
+  // 0.125 m at y = 0.15 m, whose corners are all edge crossings.
+  const auto [model, hz] = GetParam();
+  BulletWorld w(model, -9.81, hz);
+  w.addBody(boxShape(btVector3(20, 1, 20)), 0.0, btVector3(0, -1, 0));
+  btRigidBody* lower = w.addBody(boxShape(kPlank), 1.0, btVector3(0, 0.0755f, 0));
+  const btQuaternion across(btVector3(0, 1, 0), btScalar(0.5 * kPi));
+  btRigidBody* upper = w.addBody(boxShape(kPlank), 1.0, btVector3(0, 0.2260f, 0), across);
+  w.step(static_cast<int>(std::lround(0.5 * hz)));
+  const std::vector<btVector3> points = rowPoints(w, lower, upper);
+  ASSERT_EQ(points.size(), 4u);
+  for (double x : {-0.125, 0.125})
+    for (double z : {-0.125, 0.125}) {
+      double nearest = 1.0;
+      for (const btVector3& p : points)
+        nearest =
+            std::min(nearest, double((p - btVector3(btScalar(x), 0.15f, btScalar(z))).length()));
+      // Within the 1 mm contact tolerance: the rows lie on either face, as deep as the
+      // planks overlap.
+      EXPECT_LT(nearest, 1e-3) << "corner " << x << ", " << z;
+    }
+}
+
 TEST_P(CrossedFaces, APlankAcrossTwoStaysLevelAndRests) {
   const auto [model, hz] = GetParam();
   const Motion ours = plankOnTwo(false, model, hz);

@@ -5,6 +5,7 @@
 #include "sc_collision_algorithm.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -218,6 +219,129 @@ const Piece* pieceOf(const Side& s, int index) {
   return pieces[static_cast<std::size_t>(index)].get();
 }
 
+/// A vertex of a polygon in a plane's frame: (u, v) in the plane, height h above it.
+/// No default member values: the clipping's buffers are left unset until written.
+struct PlaneVertex {
+  double u, v, h;
+  bool crossing;  ///< where an edge crosses a clipping line it does not run along
+};
+
+/// Polygons of a face: corners of a box's or a small hull's face, and what clipping
+/// adds (one per clipping edge). Larger faces are left to the corners' rows.
+constexpr int kFaceCorners = 32;
+using FacePolygon = std::array<PlaneVertex, 2 * kFaceCorners>;
+
+double cross2(const PlaneVertex& o, const PlaneVertex& a, const PlaneVertex& b) {
+  return (a.u - o.u) * (b.v - o.v) - (a.v - o.v) * (b.u - o.u);
+}
+
+/// Replaces `p`'s first `n` vertices by their convex hull, counter-clockwise (Andrew's
+/// monotone chain); returns its size. `scratch` holds the sorted input.
+int convexHull2(FacePolygon& p, int n, FacePolygon& scratch) {
+  if (n < 3) return n;
+  std::copy(p.begin(), p.begin() + n, scratch.begin());
+  std::sort(scratch.begin(), scratch.begin() + n, [](const PlaneVertex& a, const PlaneVertex& b) {
+    return a.u < b.u || (a.u == b.u && a.v < b.v);
+  });
+  int k = 0;
+  for (int i = 0; i < n; ++i) {  // lower hull
+    while (k >= 2 && cross2(p[k - 2], p[k - 1], scratch[i]) <= 0.0) --k;
+    p[k++] = scratch[i];
+  }
+  for (int i = n - 2, lower = k + 1; i >= 0; --i) {  // upper hull
+    while (k >= lower && cross2(p[k - 2], p[k - 1], scratch[i]) <= 0.0) --k;
+    p[k++] = scratch[i];
+  }
+  return k - 1;  // the last repeats the first
+}
+
+/// Clips polygon `in` (`n` vertices) to the left of the directed line a -> b
+/// (Sutherland-Hodgman), into `out`; heights are interpolated along the edges (exact
+/// on a face of T). Returns the size of `out`. An edge whose ends both lie within
+/// `reach` of the line runs along it (two faces of one outline, turned a little): its
+/// crossing, anywhere along it as the turn goes, is no corner of the contact.
+int clipLeft(const FacePolygon& in, int n, const PlaneVertex& a, const PlaneVertex& b, double reach,
+             FacePolygon& out) {
+  const double length = std::hypot(b.u - a.u, b.v - a.v);
+  int m = 0;
+  for (int i = 0; i < n && m + 2 <= static_cast<int>(out.size()); ++i) {
+    const PlaneVertex& p = in[static_cast<std::size_t>(i)];
+    const PlaneVertex& q = in[static_cast<std::size_t>((i + 1) % n)];
+    const double sp = cross2(a, b, p), sq = cross2(a, b, q);
+    if (sp >= 0.0) out[static_cast<std::size_t>(m++)] = p;
+    if ((sp >= 0.0) != (sq >= 0.0)) {
+      const double s = sp / (sp - sq);
+      const bool along = std::abs(sp) < reach * length && std::abs(sq) < reach * length;
+      out[static_cast<std::size_t>(m++)] = {p.u + s * (q.u - p.u), p.v + s * (q.v - p.v),
+                                            p.h + s * (q.h - p.h), !along};
+    }
+  }
+  return m;
+}
+
+/// True when `x` lies within `reach` of one of the first `n` vertices of `p` (in the plane).
+bool nearVertex(const PlaneVertex& x, const FacePolygon& p, int n, double reach) {
+  for (int i = 0; i < n; ++i)
+    if (std::hypot(x.u - p[static_cast<std::size_t>(i)].u, x.v - p[static_cast<std::size_t>(i)].v) <
+        reach)
+      return true;
+  return false;
+}
+
+/// The rows where two convex faces cross with no corner of either there: the corners
+/// of their contact polygon that are corners of neither face (edge-edge crossings).
+/// T's face is its corners (`corners`, world) within `threshold` of O's reference
+/// `face`; O's, the vertices of O's piece `op` (placed by `world_from_o`) on that
+/// face's plane. T's face is
+/// clipped to O's in the plane, as a box-box manifold does; the corners of either
+/// face are rows of their own (convexCorners, and O's direction or
+/// addOpponentCorners). A plank lying across another touches it in a square with no
+/// such corner, and rested on the core's one point.
+void addFaceCrossings(const std::vector<Vec3>& corners, const Piece& op, const Rigid& world_from_o,
+                      const WorldPlane& face, double threshold,
+                      std::vector<detail::RowPoint>& points) {
+  FacePolygon t, o, a, b;  // T's face, O's, and the clipping's two buffers
+  const Vec3& n = face.normal;
+  const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  const auto inPlane = [&](const Vec3& p) {
+    return PlaneVertex{e1.dot(p), e2.dot(p), face.distance(p), false};
+  };
+  int nt = 0, no = 0;
+  for (const Vec3& p : corners) {
+    if (!(face.distance(p) < threshold)) continue;
+    if (nt == kFaceCorners) return;  // a larger face keeps its corners only
+    t[static_cast<std::size_t>(nt++)] = inPlane(p);
+  }
+  if (nt < 2) return;  // a corner alone is already a row
+  // O's face lies on the plane up to the rounding of its vertices' placement.
+  for (const Vec3& v : op.mesh().vertices) {
+    const Vec3 q = world_from_o * v;
+    if (!(std::abs(face.distance(q)) < 1e-3 * threshold)) continue;
+    if (no == kFaceCorners) return;
+    o[static_cast<std::size_t>(no++)] = inPlane(q);
+  }
+  nt = convexHull2(t, nt, a);
+  no = convexHull2(o, no, a);
+  if (nt < 2 || no < 3) return;
+  int m = nt;
+  std::copy(t.begin(), t.begin() + nt, a.begin());
+  FacePolygon* in = &a;
+  FacePolygon* out = &b;
+  for (int i = 0; i < no && m > 0; ++i) {
+    m = clipLeft(*in, m, o[static_cast<std::size_t>(i)], o[static_cast<std::size_t>((i + 1) % no)],
+                 threshold, *out);
+    std::swap(in, out);
+  }
+  for (int i = 0; i < m; ++i) {
+    const PlaneVertex& x = (*in)[static_cast<std::size_t>(i)];
+    if (!x.crossing || !(x.h < threshold) || nearVertex(x, t, nt, threshold) ||
+        nearVertex(x, o, no, threshold))
+      continue;
+    const Vec3 p = x.u * e1 + x.v * e2 + (face.offset + x.h) * n;
+    points.push_back({p, n, x.h, true, true});
+  }
+}
+
 /// The corners of convex piece `tp` of T (at T's current pose moved by `shift`) within
 /// `threshold` of convex piece `op` of O, each measured against O's reference face
 /// (referenceFace): a corner counts only within the threshold of the piece (a tilted
@@ -229,13 +353,15 @@ void convexCorners(const Piece& tp, const Side& t, const Piece& op, const Side& 
   const Rigid world_from_t = t.view.placement.worldFromLocal();
   corners.clear();
   for (const Vec3& v : tp.mesh().vertices) corners.push_back(world_from_t * v + shift);
-  facePlanes(op, o.view.placement.worldFromLocal(), planes);
+  const Rigid world_from_o = o.view.placement.worldFromLocal();
+  facePlanes(op, world_from_o, planes);
   const WorldPlane face = referenceFace(planes, corners);
   for (const Vec3& p : corners) {
     const double sep = face.distance(p);
     if (sep < threshold && convexSeparation(planes, p) < threshold)
       points.push_back({p, face.normal, sep, true, true});
   }
+  addFaceCrossings(corners, op, world_from_o, face, threshold, points);
 }
 
 /// O's piece of result `r` when T and O are both one convex polyhedral piece, not

@@ -15,8 +15,10 @@ namespace {
 /// Half-space rounds: a bounded call (touching) or one that gives way to the sweeps.
 constexpr int kMaxRounds = 32;
 constexpr int kUnboundedRounds = 8;
-/// Rows (leaf pairs' exits) an unbounded call gathers before it gives way.
-constexpr std::size_t kUnboundedRows = 256;
+/// Rows (leaf pairs' exits) an unbounded call gathers before it gives way: shallow
+/// overlaps of two 75k-triangle bunnies (0 to 2% deep) gather more than 256 and
+/// resolve in some 3 ms, where the sweeps take some 30.
+constexpr std::size_t kUnboundedRows = 2048;
 constexpr std::size_t kNoRowLimit = ~std::size_t{0};
 /// The sweeps' directions: a lattice, then tilts about the best down to this.
 constexpr int kSweptDirections = 64;

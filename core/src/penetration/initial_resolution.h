@@ -24,7 +24,7 @@ struct ResolutionScratch {
 /// target's translation t. The smallest t satisfying every half-space met so far is
 /// tried; pairs it brings into intersection add their own half-spaces. Translation
 /// only: the orientation is the input's, as in Input mode. Unbounded, when 8 rounds
-/// or 256 half-spaces free nothing (a deep non-convex overlap, whose leaves' exits
+/// or 2048 half-spaces free nothing (a deep non-convex overlap, whose leaves' exits
 /// conflict), the target is swept in from beyond the opponent along 64 directions and
 /// the best one's tilts (translationToi to the first contact): the shortest such exit.
 /// @return true with `free_pose` = goal translated by t, a pose where no leaf pair

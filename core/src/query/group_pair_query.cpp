@@ -220,6 +220,21 @@ void GroupPairQuery::placeTargets(const Rigid& o_from_t) {
     o_from_piece_[i] = o_from_t * t_slots_[i].group_from_piece;
 }
 
+double GroupPairQuery::clearingLength(const Rigid& o_from_t, const Vec3& u, double gap) const {
+  // |c + D u| >= c . u + D, so D >= radii + gap - c . u clears a sphere pair.
+  double length = 0.0;
+  for (const Slot& ts : t_slots_) {
+    const HullBvhNode& t = ts.data->hierarchy.nodes[0];
+    const Vec3 tc = o_from_t * (ts.group_from_piece * t.center);
+    for (const Slot& os : o_slots_) {
+      const HullBvhNode& o = os.data->hierarchy.nodes[0];
+      const Vec3 c = tc - os.group_from_piece * o.center;
+      length = std::max(length, t.radius + o.radius + gap - c.dot(u));
+    }
+  }
+  return length;
+}
+
 double GroupPairQuery::sphereBound(const NodePair& p) const {
   const HullBvhNode& t = t_slots_[p.t_slot].data->hierarchy.nodes[p.t_node];
   const Slot& os = o_slots_[p.o_slot];

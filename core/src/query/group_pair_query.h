@@ -116,6 +116,11 @@ class GroupPairQuery {
   double translationToi(const Rigid& o_from_t, const Vec3& delta, double skin,
                         const std::vector<LeafPair>& skip);
 
+  /// A length D such that the target translated by D * u (unit, opponent frame) from
+  /// o_from_t is more than `gap` from the opponent: every target piece's root sphere
+  /// beyond every opponent piece's along u (0 when already so).
+  double clearingLength(const Rigid& o_from_t, const Vec3& u, double gap) const;
+
   const TraversalCounters& counters() const { return counters_; }
 
   /// Lower bound of the distance at `o_from_t` from the last distance() (its gap less

@@ -35,9 +35,11 @@ struct PairSettings {
   double force_stiffness = 1.0;
   /// kR of manual (5-4) and (5-5), used by RotationMode::Mix (torque per radian, > 0).
   double torque_stiffness = 1.0;
-  /// A direction first seen intersecting starts from a nearby free pose found by EPA
-  /// on its intersecting convex leaves (and reports that depth) instead of reporting
-  /// InvalidInitialTransformation. Off by default, as in the manual.
+  /// A direction first seen intersecting starts from a nearby free pose (and reports
+  /// that depth) instead of reporting InvalidInitialTransformation: the exact global
+  /// depth of a convex pair; for a non-convex one, the exits of its intersecting convex
+  /// leaves, or for a deep overlap the shortest sweep in from outside (an upper bound;
+  /// docs/api.md, "Initial intersection"). Off by default, as in the manual.
   bool resolve_initial_intersection = false;
   /// A motion of the target relative to the opponent that moves some target point
   /// farther than this between two updates of a direction is a teleport: the

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -51,6 +52,13 @@ inline auto bothContactModels() {
 /// Parameter name of tests run for both contact models.
 inline std::string contactModelName(const ::testing::TestParamInfo<bullet::ContactModel>& info) {
   return info.param == bullet::ContactModel::Potential ? "Potential" : "Manifold";
+}
+
+/// Parameter name of tests run for both contact models at each of several rates (Hz).
+inline std::string contactModelRateName(
+    const ::testing::TestParamInfo<std::tuple<bullet::ContactModel, int>>& info) {
+  return contactModelName({std::get<0>(info.param), info.index}) + "At" +
+         std::to_string(std::get<1>(info.param)) + "Hz";
 }
 
 /// How a column of bodies moved while stepped: the largest horizontal distance of a

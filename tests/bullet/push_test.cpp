@@ -120,15 +120,9 @@ TEST_P(BoxOnTheGround, AnOffCentrePushTurnsItAsBulletsBoxesTurn) {
   }
 }
 
-std::string caseName(const ::testing::TestParamInfo<std::tuple<bullet::ContactModel, int>>& param) {
-  const bool potential = std::get<0>(param.param) == bullet::ContactModel::Potential;
-  return std::string(potential ? "Potential" : "Manifold") + "At" +
-         std::to_string(std::get<1>(param.param)) + "Hz";
-}
-
 INSTANTIATE_TEST_SUITE_P(Rates, BoxOnTheGround,
                          ::testing::Combine(bothContactModels(), ::testing::Values(60, 120, 240)),
-                         caseName);
+                         contactModelRateName);
 
 }  // namespace
 }  // namespace sc::test

@@ -93,16 +93,9 @@ TEST_P(CowsOnTheGround, SettleWithoutRockingOrWalking) {
   EXPECT_LT(s.sink, 0.002);
 }
 
-std::string cowCaseName(
-    const ::testing::TestParamInfo<std::tuple<bullet::ContactModel, int>>& info) {
-  const bool potential = std::get<0>(info.param) == bullet::ContactModel::Potential;
-  return std::string(potential ? "Potential" : "Manifold") + "At" +
-         std::to_string(std::get<1>(info.param)) + "Hz";
-}
-
 INSTANTIATE_TEST_SUITE_P(Models, CowsOnTheGround,
                          ::testing::Combine(bothContactModels(), ::testing::Values(60, 240)),
-                         cowCaseName);
+                         contactModelRateName);
 
 }  // namespace
 }  // namespace sc::test

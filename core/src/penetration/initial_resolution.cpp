@@ -93,7 +93,7 @@ Rounds halfSpaceRounds(GroupPairQuery& query, const Rigid& goal, double skin, do
 
 /// Direction i of n about evenly spread on the unit sphere (a Fibonacci lattice).
 Vec3 latticeDirection(int i, int n) {
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
   const double z = 1.0 - (2.0 * i + 1.0) / n;
   const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
   return Vec3(r * std::cos(golden * i), r * std::sin(golden * i), z);

@@ -256,7 +256,7 @@ void PairTracker::contactPoints(int direction, double threshold, std::vector<Con
   // 0: both count as intersecting) have no closest points: measure them lifted off
   // by half the tolerance along the normal. Apart, the closest pair counts even
   // beyond the threshold, so a consumer always has the point the result names.
-  const bool in_contact = o.penetrating || !(o.distance > 0.0);
+  const bool in_contact = !(o.distance > 0.0);  // a depth reads negative
   const double lift = in_contact ? 0.5 * s.tolerance[dir] : 0.0;
   Rigid probe = o.contact_pose;
   probe.translation += lift * o.contact.normal;

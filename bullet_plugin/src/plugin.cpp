@@ -238,6 +238,8 @@ Status validate(const PluginSettings& s) {
   if (!c.ok()) return c;
   if (!(std::isfinite(s.recovery_speed) && s.recovery_speed > 0.0))
     return Status(ErrorCode::InvalidArgument, "recovery_speed must be finite and > 0");
+  if (!finiteAtLeast(s.relative_tolerance, 0.0))
+    return Status(ErrorCode::InvalidArgument, "relative_tolerance must be finite and >= 0");
   return validate(s.query);
 }
 

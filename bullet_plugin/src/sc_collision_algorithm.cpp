@@ -619,9 +619,19 @@ ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructio
   for (int i = 0; i < 2; ++i) {
     if (!models_[i]) continue;
     const Aabb& b = models_[i]->bounds();  // the farthest corner bounds every vertex
-    reach_[i] = b.min.cwiseAbs().cwiseMax(b.max.cwiseAbs()).norm() +
-                roundingRadius(wraps[i]->getCollisionShape());
+    const double rounding = roundingRadius(wraps[i]->getCollisionShape());
+    reach_[i] = b.min.cwiseAbs().cwiseMax(b.max.cwiseAbs()).norm() + rounding;
+    size_[i] = 0.5 * (b.max - b.min).norm() + rounding;
   }
+}
+
+double ScCollisionAlgorithm::tolerance() const {
+  const PluginSettings& ps = plugin_->settings();
+  double size = kInfinity;
+  for (const double s : size_)
+    if (s > 0.0) size = std::min(size, s);
+  return std::min(ps.query.tolerance,
+                  ps.relative_tolerance > 0.0 ? ps.relative_tolerance * size : kInfinity);
 }
 
 double ScCollisionAlgorithm::motionSinceQuery(
@@ -643,7 +653,7 @@ bool ScCollisionAlgorithm::rowsStillHold(const btCollisionObjectWrapper* const w
   // creep of a body at rest (nm per step), so a resting pair is queried again only
   // when something moves it.
   return rows_kept_ && kept_version_ == plugin_->stepBuffer().settingsVersion() &&
-         motionSinceQuery(wraps) < 0.01 * plugin_->settings().query.tolerance;
+         motionSinceQuery(wraps) < 0.01 * tolerance();
 }
 
 void ScCollisionAlgorithm::rememberQuery(const btCollisionObjectWrapper* const wraps[2],
@@ -771,7 +781,8 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   // This query's figures apart from the step's, to be repeated while its rows hold.
   PairFigures figures(stats, queried_stats_);
   const ContactSettings contact = plugin_->pairSettings(objects_[0], objects_[1]);
-  const SceneSettings query = pairQuerySettings(ps.query, contact, sides, double(info.m_timeStep));
+  SceneSettings query = pairQuerySettings(ps.query, contact, sides, double(info.m_timeStep));
+  query.tolerance = tolerance();
   Directions dirs;
   dirs.a_target = sides[0].dynamic || !sides[1].dynamic || closest_points_;
   dirs.b_target = sides[1].dynamic || closest_points_;

@@ -45,6 +45,11 @@ struct PluginSettings {
   /// plugin sets force_stiffness / torque_stiffness per pair from the contact spring
   /// (they weigh Mix).
   SceneSettings query = defaultQuerySettings();
+  /// A pair's tolerance is at most this fraction of its smaller body's size (half the
+  /// diagonal of its model's bounds, plus a sphere's or capsule's radius): a mesh body
+  /// rests about the tolerance deep, so small bodies rest as shallow, for their size,
+  /// as large ones (a 1 cm cow: 0.11 mm, not the absolute 1 mm). 0 = the tolerance alone.
+  double relative_tolerance = 0.02;
   /// Pairs that start intersecting deeper than the spring can take (its energy
   /// 1/2 k d^2 above 1/2 m_red v^2, i.e. d > v / omega) are pushed apart at overlap /
   /// contact period, at most this speed v [m/s]: along their depth's normal when the

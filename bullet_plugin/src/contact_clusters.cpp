@@ -37,6 +37,21 @@ struct Moments {
   }
 };
 
+/// The convex bodies a patch stands on, a bit each (0, 1): the seed's `s`, and those
+/// the candidates near it (`near`) that may join it (`joins`) were measured against.
+/// The seed alone would decide by a rounding: the other direction's point at the same
+/// spot (measured against the non-convex side) split a cow's feet on a slab into two
+/// patches, the next step one, and a patch and its rows came and went.
+template <class Joins, class Near>
+int supportBodies(const std::vector<RowCandidate>& candidates, const RowCandidate& s,
+                  const Joins& joins, const Near& near) {
+  int bodies = s.convex_body >= 0 ? 1 << s.convex_body : 0;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (candidates[i].convex_body >= 0 && joins(i) && near(i))
+      bodies |= 1 << candidates[i].convex_body;
+  return bodies;
+}
+
 /// Labels the free candidates within kClusterCos of the seed's normal as `label`. A
 /// patch of at most kClusterPoints corners keeps them: they are vertices of convex
 /// pieces, stable from step to step (Bullet's manifold picks the deepest and widest
@@ -59,15 +74,7 @@ void growCluster(const std::vector<RowCandidate>& candidates, int seed, int labe
   const auto near = [&](std::size_t i) {
     return (candidates[i].on_b - s.on_b).squaredNorm() <= radius * radius;
   };
-  // The convex bodies the patch stands on: the seed's, and those a candidate near it
-  // was measured against. The seed alone would decide by a rounding: the other
-  // direction's point at the same spot (measured against the non-convex side) split a
-  // cow's feet on a slab into two patches, the next step one, and a patch and its rows
-  // came and went.
-  int bodies = s.convex_body >= 0 ? 1 << s.convex_body : 0;
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (candidates[i].convex_body >= 0 && joins(i) && near(i))
-      bodies |= 1 << candidates[i].convex_body;
+  const int bodies = supportBodies(candidates, s, joins, near);
   Moments m;
   Vec3 normal_sum = Vec3::Zero();
   bool all_exact = true;

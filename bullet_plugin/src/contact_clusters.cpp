@@ -37,6 +37,21 @@ struct Moments {
   }
 };
 
+/// The convex bodies a patch stands on, a bit each (0, 1): the seed's `s`, and those
+/// the candidates near it (`near`) that may join it (`joins`) were measured against.
+/// The seed alone would decide by a rounding: the other direction's point at the same
+/// spot (measured against the non-convex side) split a cow's feet on a slab into two
+/// patches, the next step one, and a patch and its rows came and went.
+template <class Joins, class Near>
+int supportBodies(const std::vector<RowCandidate>& candidates, const RowCandidate& s,
+                  const Joins& joins, const Near& near) {
+  int bodies = s.convex_body >= 0 ? 1 << s.convex_body : 0;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (candidates[i].convex_body >= 0 && joins(i) && near(i))
+      bodies |= 1 << candidates[i].convex_body;
+  return bodies;
+}
+
 /// Labels the free candidates within kClusterCos of the seed's normal as `label`. A
 /// patch of at most kClusterPoints corners keeps them: they are vertices of convex
 /// pieces, stable from step to step (Bullet's manifold picks the deepest and widest
@@ -53,6 +68,13 @@ void growCluster(const std::vector<RowCandidate>& candidates, int seed, int labe
   c.normal = s.normal;
   const Vec3 u = s.normal.unitOrthogonal();
   const Vec3 v = s.normal.cross(u);
+  const auto joins = [&](std::size_t i) {
+    return labels[i] < 0 && candidates[i].normal.dot(s.normal) >= kClusterCos;
+  };
+  const auto near = [&](std::size_t i) {
+    return (candidates[i].on_b - s.on_b).squaredNorm() <= radius * radius;
+  };
+  const int bodies = supportBodies(candidates, s, joins, near);
   Moments m;
   Vec3 normal_sum = Vec3::Zero();
   bool all_exact = true;
@@ -60,10 +82,10 @@ void growCluster(const std::vector<RowCandidate>& candidates, int seed, int labe
     // Corners of a convex piece form one support polygon however wide, and so do the
     // regions measured against one convex body: its surface lies between them, where
     // split patches made a body on a few feet rock from one patch to the other.
-    const bool one_support = (s.corner && candidates[i].corner) ||
-                             (s.convex_body >= 0 && s.convex_body == candidates[i].convex_body);
-    const bool far = !one_support && (candidates[i].on_b - s.on_b).squaredNorm() > radius * radius;
-    if (labels[i] >= 0 || candidates[i].normal.dot(s.normal) < kClusterCos || far) continue;
+    const int body = candidates[i].convex_body;
+    const bool one_support =
+        (s.corner && candidates[i].corner) || (body >= 0 && (bodies >> body & 1) != 0);
+    if (!joins(i) || (!one_support && !near(i))) continue;
     labels[i] = label;
     const Vec3& p = candidates[i].on_b;
     m.add(u.dot(p), v.dot(p), s.normal.dot(p), candidates[i].separation);

@@ -46,9 +46,9 @@ struct ContactCluster {
 /// close normals are two patches: rows spread over both would stand between them;
 /// the corners of a convex piece, its support polygon, stay one patch, and so do
 /// regions on one convex body, whose surface spans the space between them: the feet
-/// of a body standing on a box),
-/// the deepest of the rest seeds the next, and so on. A patch's depth weighs its
-/// candidates by exp(-(height above its deepest) / `depth_scale`) (the contact
+/// of a body standing on a box, whether the seed or a candidate within `radius` of it
+/// was measured against the box), the deepest of the rest seeds the next, and so on. A patch's
+/// depth weighs its candidates by exp(-(height above its deepest) / `depth_scale`) (the contact
 /// tolerance, > 0). Candidates left when all patches
 /// are taken are dropped; returns how many. `labels` is scratch (one per candidate);
 /// allocation-free once the vectors have their capacity.

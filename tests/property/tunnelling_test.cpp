@@ -202,6 +202,61 @@ TEST_P(Tunnelling, FromRestWithinTheToleranceThroughTheWall) {
   }
 }
 
+/// A body pressed into a ground slab, then moved in one update far along it (a jump):
+/// with a fin standing between, the proxy stays on the side it came from, touching
+/// the fin and the ground; with the fin out of the way it reaches the goal's contact. The
+/// update may leave the surface on its way (a free path certifies the move as well
+/// as the straight one), never pass through what stands in it.
+TEST(TunnellingJump, AlongTheGroundPastAFinInOneUpdate) {
+  const MeshData ground = boxMesh(Vec3(1.0, 1.0, 0.01));
+  const MeshData fin = boxMesh(Vec3(0.005, 1.0, 0.1));
+  const MeshData body = boxMesh(Vec3(0.05, 0.05, 0.05));
+  const ModelPtr ground_model = modelOf(ModelKind::ClosedPolyhedron, ground);
+  const ModelPtr fin_model = modelOf(ModelKind::ClosedPolyhedron, fin);
+  const ModelPtr body_model = modelOf(ModelKind::ClosedPolyhedron, body);
+  ASSERT_TRUE(ground_model && fin_model && body_model);
+  const Part body_part{body_model.get(), Rigid(), 1};
+  const double rest = 0.01 + 0.05, depth = 2e-3;
+  for (const bool with_fin : {true, false}) {
+    // On the ground, x in +-0.005, or out of the way at x = 0.8 (still a non-convex
+    // opponent, so the general path runs).
+    const Rigid fin_pose{Mat3::Identity(), Vec3(with_fin ? 0.0 : 0.8, 0.0, 0.1)};
+    const Part parts[2] = {{ground_model.get(), Rigid(), 2}, {fin_model.get(), fin_pose, 3}};
+    for (const double jump : {0.1, 0.3, 0.6}) {
+      SCOPED_TRACE(testing::Message() << "fin " << with_fin << " jump " << jump);
+      SceneSettings settings;
+      settings.tolerance = 1e-3;
+      PairTracker tracker;
+      DirectedResult out[2];
+      const GroupView opponent{parts, 2, Placement()};
+      const double x0 = -0.06 - 0.5 * jump;
+      // Apart, pressed in, pressed in a little further (the proxy in contact), then far.
+      for (const Vec3& c :
+           {Vec3(x0, 0.1, rest + 5e-4), Vec3(x0, 0.1, rest - 0.5 * depth),
+            Vec3(x0, 0.1, rest - depth), Vec3(x0 + jump + 0.12, 0.1, rest - depth)}) {
+        const Placement p = placementOf(Quat::Identity(), c);
+        tracker.update({&body_part, 1, p}, opponent, {true, false}, settings, out);
+        ASSERT_EQ(out[0].code, ErrorCode::Ok);
+        EXPECT_TRUE(detail::checkResult(out[0], p, Placement()).ok());
+      }
+      const DirectedResult& r = out[0];
+      ASSERT_LT(r.distance, 0.0);
+      const Rigid contact = placementOf(r.contact_orientation, r.contact_position).worldFromLocal();
+      // The contact configuration rests on the ground, within the tolerance of it, and,
+      // with the fin, on the side the body came from, next to it.
+      EXPECT_NEAR(r.contact_position.z(), rest, settings.tolerance);
+      if (with_fin) {
+        EXPECT_LT(r.contact_position.x(), -0.005 - 0.05 + 1e-9) << "passed through the fin";
+        EXPECT_GT(r.contact_position.x(), -0.005 - 0.05 - settings.tolerance);
+        EXPECT_LE(meshSurfaceDistance(body, contact, fin, fin_pose).distance, settings.tolerance);
+      } else {
+        EXPECT_NEAR(-r.distance, depth, 1e-9);
+        EXPECT_VEC_NEAR(r.normal, Vec3::UnitZ(), 1e-9);
+      }
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Walls, Tunnelling,
                          ::testing::Values(Wall{ModelKind::ClosedPolyhedron, "thin box"},
                                            Wall{ModelKind::TriangleSoup, "soup quad"}),

@@ -711,7 +711,7 @@ double patchDistance(const btPersistentManifold* m, const detail::ContactCluster
 
 }  // namespace
 
-int ScCollisionAlgorithm::manifoldFor(const detail::ContactCluster& c, bool taken[kManifolds]) {
+int ScCollisionAlgorithm::slotFor(const detail::ContactCluster& c, bool taken[kManifolds]) {
   static_assert(kPatches == detail::kMaxClusters);
   // The manifold that held this patch: the nearest of its normal. Two regions of one
   // normal keep a manifold each; a single contact that moves between the ends of a
@@ -881,7 +881,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   bool taken[kManifolds] = {};
   int rows = 0;
   for (const detail::ContactCluster& c : clusters_) {
-    const int slot = manifoldFor(c, taken);
+    const int slot = slotFor(c, taken);
     // A leaf patch's five rows in one manifold of four points: each step one of them
     // found no point of its own, took the place of another (Bullet's widest-area
     // reduction) and both lost their warm starts, and the support changed every step

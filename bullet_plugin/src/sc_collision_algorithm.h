@@ -78,7 +78,7 @@ class ScCollisionAlgorithm : public AlgorithmBase {
   /// The patch slot (below kPatches) for patch `c`: the one whose manifold held the
   /// same patch last step (its normal, the nearest points), else an empty one; marks
   /// it taken and gives it a manifold.
-  int manifoldFor(const detail::ContactCluster& c, bool taken[kManifolds]);
+  int slotFor(const detail::ContactCluster& c, bool taken[kManifolds]);
   /// Adds patch `c`'s rows [begin, end) to manifold `slot`; returns its points.
   int addPatchRows(int slot, const detail::ContactCluster& c, int begin, int end,
                    const btCollisionObjectWrapper* const wraps[2], double stale_floor,

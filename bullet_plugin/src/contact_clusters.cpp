@@ -128,10 +128,12 @@ void growCluster(const std::vector<RowCandidate>& candidates, int seed, int labe
   const double cs = ws / wn;
   const double ru = std::sqrt(3.0 * var_u), rv = std::sqrt(3.0 * var_v);
   const double ch = m.sh / m.n;
-  const double offsets[5][2] = {{0.0, 0.0}, {-ru, 0.0}, {ru, 0.0}, {0.0, -rv}, {0.0, rv}};
+  // The four ends first, the centroid last: a manifold holds four points, and the
+  // centroid is the one its widest-area reduction would drop (see kManifoldPoints).
+  const double offsets[5][2] = {{-ru, 0.0}, {ru, 0.0}, {0.0, -rv}, {0.0, rv}, {0.0, 0.0}};
   c.point_count = 0;
   for (int k = 0; k < 5; ++k) {
-    if (k > 0 && (k <= 2 ? ru : rv) <= 0.0) continue;  // no extent along that axis
+    if (k < 4 && (k < 2 ? ru : rv) <= 0.0) continue;  // no extent along that axis
     const double pu = std::clamp(cu + offsets[k][0], m.min_u, m.max_u);
     const double pv = std::clamp(cv + offsets[k][1], m.min_v, m.max_v);
     RowCandidate& r = c.points[static_cast<std::size_t>(c.point_count++)];

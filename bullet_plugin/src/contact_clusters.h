@@ -26,8 +26,9 @@ struct RowCandidate {
 };
 
 /// Patches per pair, rows per patch: a patch of corners keeps them (up to
-/// kClusterPoints), a patch of leaf contacts gets five rows from its moments
-/// (growCluster); Bullet's manifold keeps the deepest and the widest 4 of them.
+/// kClusterPoints; Bullet's manifold keeps the deepest and the widest 4 of them), a
+/// patch of leaf contacts gets five rows from its moments (growCluster), its four ends
+/// first and its centroid last (the plugin keeps the centroid in a second manifold).
 constexpr int kMaxClusters = 4;
 constexpr int kClusterPoints = 16;
 /// Candidates whose normals are within this cosine (about 25 degrees) share a patch.

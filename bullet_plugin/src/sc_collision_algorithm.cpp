@@ -711,30 +711,50 @@ double patchDistance(const btPersistentManifold* m, const detail::ContactCluster
 
 }  // namespace
 
-btPersistentManifold* ScCollisionAlgorithm::manifoldFor(const detail::ContactCluster& c,
-                                                        bool taken[kManifolds]) {
-  static_assert(kManifolds == detail::kMaxClusters);
+int ScCollisionAlgorithm::slotFor(const detail::ContactCluster& c, bool taken[kManifolds]) {
+  static_assert(kPatches == detail::kMaxClusters);
   // The manifold that held this patch: the nearest of its normal. Two regions of one
   // normal keep a manifold each; a single contact that moves between the ends of a
   // lying capsule keeps both ends' points as support, as Bullet's own manifolds do.
   int best = -1;
   double best_distance = kInfinity;
-  for (int i = 0; i < kManifolds; ++i) {
+  for (int i = 0; i < kPatches; ++i) {
     const double d = taken[i] ? kInfinity : patchDistance(manifolds_[i], c);
     if (d < best_distance) {
       best_distance = d;
       best = i;
     }
   }
-  for (int i = 0; i < kManifolds && best < 0; ++i)  // else an empty one
+  for (int i = 0; i < kPatches && best < 0; ++i)  // else an empty one
     if (!taken[i] && (manifolds_[i] == nullptr || manifolds_[i]->getNumContacts() == 0)) best = i;
-  for (int i = 0; i < kManifolds && best < 0; ++i)  // else any left (its old patch is gone)
+  for (int i = 0; i < kPatches && best < 0; ++i)  // else any left (its old patch is gone)
     if (!taken[i]) best = i;
   taken[best] = true;
-  btPersistentManifold*& m = manifolds_[best];
+  return best;
+}
+
+int ScCollisionAlgorithm::addPatchRows(int slot, const detail::ContactCluster& c, int begin,
+                                       int end, const btCollisionObjectWrapper* const wraps[2],
+                                       double stale_floor, btManifoldResult* result) {
+  btPersistentManifold*& m = manifolds_[slot];
   if (m == nullptr) m = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
   if (m->getNumContacts() > 0 && !sameNormal(m, c)) m->clearManifold();
-  return m;
+  // A patch of corners is its whole support polygon: the points the motion since
+  // they were made has broken go before its rows come in. A full manifold makes room
+  // by dropping one of its points, which could be a new row while the broken ones
+  // went only after (a box sliding more than the breaking threshold in a step lost
+  // one or two of its four ground rows, and rocked). Leaf contacts' patches keep old
+  // points as support their rows may lack (dropStalePoints).
+  if (cornersOnly(c))
+    m->refreshContactPoints(wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform());
+  result->setPersistentManifold(m);
+  for (int k = begin; k < end; ++k) {
+    const detail::RowCandidate& p = c.points[static_cast<std::size_t>(k)];
+    result->addContactPoint(toBt(p.normal), toBt(p.on_b), btScalar(p.separation));
+  }
+  dropStalePoints(m, c, wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform(), stale_floor);
+  result->refreshContactPoints();
+  return m->getNumContacts();
 }
 
 void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
@@ -858,27 +878,21 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   for (int dir = 0; dir < 2; ++dir)
     if (out[dir].code == ErrorCode::Ok && out[dir].penetrating())
       stale_floor = std::min(stale_floor, -query.tolerance - out[dir].tpdv.norm());
-  bool taken[kManifolds] = {false, false, false, false};
+  bool taken[kManifolds] = {};
   int rows = 0;
   for (const detail::ContactCluster& c : clusters_) {
-    btPersistentManifold* m = manifoldFor(c, taken);
-    // A patch of corners is its whole support polygon: the points the motion since
-    // they were made has broken go before its rows come in. A full manifold makes room
-    // by dropping one of its points, which could be a new row while the broken ones
-    // went only after (a box sliding more than the breaking threshold in a step lost
-    // one or two of its four ground rows, and rocked). Leaf contacts' patches keep old
-    // points as support their rows may lack (dropStalePoints).
-    if (cornersOnly(c))
-      m->refreshContactPoints(wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform());
-    result->setPersistentManifold(m);
-    for (int k = 0; k < c.point_count; ++k) {
-      const detail::RowCandidate& p = c.points[static_cast<std::size_t>(k)];
-      result->addContactPoint(toBt(p.normal), toBt(p.on_b), btScalar(p.separation));
-    }
-    dropStalePoints(m, c, wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform(),
-                    stale_floor);
-    result->refreshContactPoints();
-    rows += m->getNumContacts();
+    const int slot = slotFor(c, taken);
+    // A leaf patch's five rows in one manifold of four points: each step one of them
+    // found no point of its own, took the place of another (Bullet's widest-area
+    // reduction) and both lost their warm starts, and the support changed every step
+    // (a heavy cow on a light slab rocked). The rows past four keep a manifold of their
+    // own, and only them (old points there are the rows' own past places, no support).
+    // A patch of corners (up to 16) is left to the reduction, as before.
+    const int held = cornersOnly(c) ? c.point_count : std::min(c.point_count, MANIFOLD_CACHE_SIZE);
+    rows += addPatchRows(slot, c, 0, held, wraps, stale_floor, result);
+    if (held == c.point_count) continue;
+    taken[kPatches + slot] = true;
+    rows += addPatchRows(kPatches + slot, c, held, c.point_count, wraps, kInfinity, result);
   }
   for (int i = 0; i < kManifolds; ++i)
     if (!taken[i] && manifolds_[i] != nullptr) manifolds_[i]->clearManifold();

@@ -36,9 +36,11 @@ class ScCollisionAlgorithm : public AlgorithmBase {
   const btCollisionObject* objects_[2];
   ModelPtr models_[2];  ///< per side; null: a shape the algorithm cannot take (ignored)
   /// One manifold per contact patch (detail::buildClusters), so that each patch keeps
-  /// its rows from step to step; null until a patch needs it.
-  static constexpr int kManifolds = 4;
-  btPersistentManifold* manifolds_[kManifolds] = {nullptr, nullptr, nullptr, nullptr};
+  /// its rows from step to step, and patch i's rows beyond the four a manifold holds
+  /// (a leaf patch's centroid) in manifold kPatches + i; null until a patch needs it.
+  static constexpr int kPatches = 4;
+  static constexpr int kManifolds = 2 * kPatches;
+  btPersistentManifold* manifolds_[kManifolds] = {};
   /// Per direction: the spring (or the manifold) responds; set once the pair is seen
   /// apart or within detail::springReach. Before that a depth (a pair that starts
   /// deeply intersecting) gets the bounded recovery push.
@@ -73,9 +75,14 @@ class ScCollisionAlgorithm : public AlgorithmBase {
   std::vector<int> labels_;                       ///< clustering scratch (reused)
   std::vector<detail::ContactCluster> clusters_;  ///< the step's patches (reused)
 
-  /// The manifold for patch `c`: the one that held the same patch last step (its
-  /// normal, the nearest points), else an empty one; marks it taken.
-  btPersistentManifold* manifoldFor(const detail::ContactCluster& c, bool taken[kManifolds]);
+  /// The patch slot (below kPatches) for patch `c`: the one whose manifold held the
+  /// same patch last step (its normal, the nearest points), else an empty one; marks
+  /// it taken and gives it a manifold.
+  int slotFor(const detail::ContactCluster& c, bool taken[kManifolds]);
+  /// Adds patch `c`'s rows [begin, end) to manifold `slot`; returns its points.
+  int addPatchRows(int slot, const detail::ContactCluster& c, int begin, int end,
+                   const btCollisionObjectWrapper* const wraps[2], double stale_floor,
+                   btManifoldResult* result);
   /// Rows of the taken manifolds whose normal is within kClusterCos of `m`'s.
   int rowsAlong(const btPersistentManifold* m, const bool taken[kManifolds]) const;
   /// How much the two bodies' surfaces can have moved relative to each other since

@@ -133,6 +133,7 @@ struct Landing {
   double settled = 0.0;             ///< deepest overlap with the terrain over the last second [m]
   double impact = 0.0;              ///< deepest overlap over the whole run [m]
   double rms_speed = 0.0;           ///< RMS speed of both centres over the last second [m/s]
+  double early_rms = 0.0;           ///< the same over the fourth second [m/s]
   double max_speed = 0.0;           ///< largest speed of a centre over the last second [m/s]
   double ms_per_step = 0.0;
 };
@@ -156,8 +157,8 @@ Landing drop(ContactModel model, const Grid& terrain,
       cow, 1.0, btVector3(-0.5f, btScalar(0.21 - lowest), -0.5f) + mesh_from_shape.getOrigin(),
       mesh_from_shape.getRotation());
   Landing out;
-  const int steps = 900, last = 60;
-  double v2 = 0.0;
+  const int steps = 900, last = 60, early = 180;  // early: the fourth second's first step
+  double v2 = 0.0, early_v2 = 0.0;
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < steps; ++k) {
     w.step();
@@ -165,6 +166,8 @@ Landing drop(ContactModel model, const Grid& terrain,
                                      terrainInBox(terrain, kBoxHalf, b->getWorldTransform()),
                                      sinkBelow(terrain, *cow, c->getWorldTransform())});
     out.impact = std::max(out.impact, overlap);
+    if (k >= early && k < early + last)
+      for (const btRigidBody* r : {b, c}) early_v2 += double(r->getLinearVelocity().length2());
     if (k < steps - last) continue;
     out.settled = std::max(out.settled, overlap);
     for (const btRigidBody* r : {b, c}) {
@@ -175,6 +178,7 @@ Landing drop(ContactModel model, const Grid& terrain,
   out.ms_per_step =
       1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / steps;
   out.rms_speed = std::sqrt(v2 / (2 * last));
+  out.early_rms = std::sqrt(early_v2 / (2 * last));
   out.box_y = b->getCenterOfMassPosition().y();
   out.cow_y = c->getCenterOfMassPosition().y();
   return out;
@@ -191,8 +195,10 @@ std::shared_ptr<bullet::ScBulletShape> cowShape() {
 class TerrainDrop : public ::testing::TestWithParam<ContactModel> {};
 
 // Bounds: at rest within about the contact tolerance (1 mm) of the surface, as on a
-// floor (CowsOnTheGround); landings at 2 m/s within a few tolerances. The potential
-// model's cow rocks in its valley for some 9 s (on the soup alike) before it rests.
+// floor (CowsOnTheGround); landings at 2 m/s within a few tolerances. At rest by the
+// fourth second as in the last: the potential model's cow rocked in its valley at
+// 1-2.6e-2 m/s until the tenth second while one of its patch's five rows took another's
+// place in the manifold every step (docs/bullet.md, "Patches").
 TEST_P(TerrainDrop, BodiesRestOnABvhTriangleMeshAsOnASoupOfItsTriangles) {
   const Grid terrain = bumpyTerrain();
   const auto cow = cowShape();
@@ -202,12 +208,13 @@ TEST_P(TerrainDrop, BodiesRestOnABvhTriangleMeshAsOnASoupOfItsTriangles) {
   for (const auto& [name, l] : {std::pair{"bvh", bvh}, std::pair{"soup", soup}}) {
     std::printf(
         "[terrain %s %s] box y %.5f m, cow y %.5f m, overlap settled %.2f mm, impacts %.2f mm, "
-        "rms speed (last s) %.2e m/s, max %.2e m/s, %.2f ms/step\n",
+        "rms speed (last s) %.2e m/s, (fourth s) %.2e m/s, max %.2e m/s, %.2f ms/step\n",
         GetParam() == ContactModel::Potential ? "potential" : "manifold", name, l.box_y, l.cow_y,
-        1e3 * l.settled, 1e3 * l.impact, l.rms_speed, l.max_speed, l.ms_per_step);
+        1e3 * l.settled, 1e3 * l.impact, l.rms_speed, l.early_rms, l.max_speed, l.ms_per_step);
     EXPECT_LT(l.settled, 0.002) << name;
     EXPECT_LT(l.impact, 0.005) << name;
     EXPECT_LT(l.rms_speed, 1e-3) << name;
+    EXPECT_LT(l.early_rms, 1e-3) << name;
     EXPECT_LT(l.max_speed, 5e-3) << name;
   }
   // The same triangles and the same algorithm: the same resting poses, within what

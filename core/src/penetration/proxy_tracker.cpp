@@ -224,7 +224,8 @@ bool ProxyTracker::sweptFree(GroupPairQuery& query, const Rigid& goal, const Vec
   skip_.clear();
   if (query.translationToi(proxy_, goal * center - from, skin, skip_) < 1.0) return false;
   // Contacts will be needed here soon: their rebuild runs ahead, a share per update.
-  query.rebuildNearAhead(goal, settings.tolerance, slideMarginOf(settings));
+  const double gap = out.code == ErrorCode::Ok ? out.distance : settings.max_distance;
+  query.rebuildNearAhead(goal, settings.tolerance, slideMarginOf(settings), gap);
   return true;
 }
 

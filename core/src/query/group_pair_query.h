@@ -93,8 +93,9 @@ class GroupPairQuery {
   }
   /// contactsNear() will soon be called around o_from_t, where its kept pairs do not
   /// reach: their rebuild there is started, or continued, a share of it per call, so
-  /// that no single call pays for all of it.
-  void rebuildNearAhead(const Rigid& o_from_t, double threshold, double margin);
+  /// that no single call pays for all of it. `gap`, the distance at o_from_t, is the
+  /// approach left before the contacts are due: the shares are paced to end by then.
+  void rebuildNearAhead(const Rigid& o_from_t, double threshold, double margin, double gap);
 
   /// Closest points of one leaf pair (GJK with its warm start).
   LeafContact pairAt(int t_leaf, int o_leaf, const Rigid& o_from_t);

@@ -103,6 +103,9 @@ class NearPairs {
     std::vector<LeafContact> found;
     int work = 0;     ///< node pairs taken so far
     Rigid last_pose;  ///< pose of the last call that ran it (the target's speed)
+    /// Motion left before its contacts are due, when run ahead of a first contact
+    /// (the distance there), else 0: paces it without kept pairs to cover the target.
+    double approach = 0.0;
   };
   Pending& pending() { return pending_; }
   const Pending& pending() const { return pending_; }

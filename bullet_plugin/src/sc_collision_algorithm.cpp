@@ -621,17 +621,15 @@ ScCollisionAlgorithm::ScCollisionAlgorithm(const btCollisionAlgorithmConstructio
     const Aabb& b = models_[i]->bounds();  // the farthest corner bounds every vertex
     const double rounding = roundingRadius(wraps[i]->getCollisionShape());
     reach_[i] = b.min.cwiseAbs().cwiseMax(b.max.cwiseAbs()).norm() + rounding;
-    size_[i] = 0.5 * (b.max - b.min).norm() + rounding;
+    const double size = 0.5 * (b.max - b.min).norm() + rounding;
+    if (size > 0.0) size_ = std::min(size_, size);
   }
 }
 
 double ScCollisionAlgorithm::tolerance() const {
   const PluginSettings& ps = plugin_->settings();
-  double size = kInfinity;
-  for (const double s : size_)
-    if (s > 0.0) size = std::min(size, s);
   return std::min(ps.query.tolerance,
-                  ps.relative_tolerance > 0.0 ? ps.relative_tolerance * size : kInfinity);
+                  ps.relative_tolerance > 0.0 ? ps.relative_tolerance * size_ : kInfinity);
 }
 
 double ScCollisionAlgorithm::motionSinceQuery(

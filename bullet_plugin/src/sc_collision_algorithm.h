@@ -57,9 +57,9 @@ class ScCollisionAlgorithm : public AlgorithmBase {
   bool ever_queried_ = false;
   double reach_[2] = {0.0, 0.0};  ///< per side: farthest surface point from its origin
   /// The pair's tolerance: the query's, at most PluginSettings::relative_tolerance of
-  /// the smaller body's size (half its bounds' diagonal plus a rounding radius).
+  /// size_, the smaller body's size (half its bounds' diagonal plus a rounding radius).
   double tolerance() const;
-  double size_[2] = {0.0, 0.0};
+  double size_ = kInfinity;
   /// The last query's figures, and whether its rows may be kept while the bodies stay
   /// put (a query that projected an impact or pushed a pair apart may not).
   StepStats queried_stats_;

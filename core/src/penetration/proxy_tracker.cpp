@@ -218,7 +218,7 @@ bool ProxyTracker::sweptFree(GroupPairQuery& query, const Rigid& goal, const Vec
   measured = true;
   const double skin = skinOf(settings);
   const bool apart =
-      out.code == ErrorCode::NoResult || (out.code == ErrorCode::Ok && out.distance > skin);
+      out.code == ErrorCode::NoResult || (out.code == ErrorCode::Ok && out.distance > 0.5 * skin);
   if (!apart) return false;
   // Nothing within skin / 2 along the translation (translationToi), and the goal free.
   skip_.clear();

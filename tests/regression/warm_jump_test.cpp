@@ -141,32 +141,36 @@ TEST(WarmJump, SmallStepsWithinTheToleranceAfterAJumpEqualAFreshTracker) {
   e.settings.tolerance = 1e-3 * size;
   Rng rng(31);
   int compared = 0;
-  for (const RotationMode mode : {RotationMode::Input, RotationMode::None}) {
-    e.settings.rotation_mode = mode;
-    for (int path = 0; path < 2; ++path) {
-      const Vec3 u0 = randomDirection(rng);
-      const Vec3 axis = u0.unitOrthogonal();
-      const Vec3 spin = randomDirection(rng);
-      PairTracker warm;
-      for (int step = 0; step < 12; ++step) {
-        // A 5 % jump every fourth step, else 0.05 % of the size and a small turn; the
-        // target 0.6 tolerances from the opponent.
-        const double angle = 0.05 * (step / 4) + 5e-4 * step;
-        const Vec3 u = Eigen::AngleAxisd(angle, axis) * u0;
-        const Mat3 q = Eigen::AngleAxisd(5e-4 * step, spin).toRotationMatrix();
-        const Rigid pose{q, e.offsetAtGap(q, u, 0.6 * e.settings.tolerance) * u};
-        PairTracker cold;
-        const DirectedResult expected = e.update(cold, pose);
-        const DirectedResult r = e.update(warm, pose);
-        ASSERT_EQ(r.code, ErrorCode::Ok);
-        if (expected.code != ErrorCode::Ok || r.distance <= 0.0) continue;
-        EXPECT_NEAR(r.distance, expected.distance, 1e-12 * size)
-            << "mode " << static_cast<int>(mode) << " path " << path << " step " << step;
-        ++compared;
+  // 0.6 tolerances, and 0.19: between half the skin (TOLERANCE/4), within which the
+  // sweep stops, and the skin.
+  for (const double gap : {0.6, 0.19})
+    for (const RotationMode mode : {RotationMode::Input, RotationMode::None}) {
+      e.settings.rotation_mode = mode;
+      for (int path = 0; path < 2; ++path) {
+        const Vec3 u0 = randomDirection(rng);
+        const Vec3 axis = u0.unitOrthogonal();
+        const Vec3 spin = randomDirection(rng);
+        PairTracker warm;
+        for (int step = 0; step < 12; ++step) {
+          // A 5 % jump every fourth step, else 0.05 % of the size and a small turn; the
+          // target `gap` tolerances from the opponent.
+          const double angle = 0.05 * (step / 4) + 5e-4 * step;
+          const Vec3 u = Eigen::AngleAxisd(angle, axis) * u0;
+          const Mat3 q = Eigen::AngleAxisd(5e-4 * step, spin).toRotationMatrix();
+          const Rigid pose{q, e.offsetAtGap(q, u, gap * e.settings.tolerance) * u};
+          PairTracker cold;
+          const DirectedResult expected = e.update(cold, pose);
+          const DirectedResult r = e.update(warm, pose);
+          ASSERT_EQ(r.code, ErrorCode::Ok);
+          if (expected.code != ErrorCode::Ok || r.distance <= 0.0) continue;
+          EXPECT_NEAR(r.distance, expected.distance, 1e-12 * size)
+              << "gap " << gap << " mode " << static_cast<int>(mode) << " path " << path << " step "
+              << step;
+          ++compared;
+        }
       }
     }
-  }
-  EXPECT_GE(compared, 36);
+  EXPECT_GE(compared, 72);
 }
 
 /// A carried tracker whose jumps exceed PairSettings::teleport_distance answers what a

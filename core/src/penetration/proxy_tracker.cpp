@@ -217,6 +217,7 @@ bool ProxyTracker::sweptFree(GroupPairQuery& query, const Rigid& goal, const Vec
   if (!measured) reportApart(query, goal, settings, out);
   measured = true;
   const double skin = skinOf(settings);
+  // A goal nearer than half the skin would stop the sweep: left to the slide.
   const bool apart =
       out.code == ErrorCode::NoResult || (out.code == ErrorCode::Ok && out.distance > 0.5 * skin);
   if (!apart) return false;

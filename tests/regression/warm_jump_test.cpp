@@ -59,6 +59,16 @@ void twoElephants(Elephants& e) {
   e.b = {e.model.get(), Rigid(), 1};
 }
 
+/// A path around the opponent: the target's offset direction turns about an axis
+/// orthogonal to where it starts, its body about `spin`.
+struct Orbit {
+  Vec3 u0, axis, spin;
+  explicit Orbit(Rng& rng)
+      : u0(randomDirection(rng)), axis(u0.unitOrthogonal()), spin(randomDirection(rng)) {}
+  Vec3 direction(double angle) const { return Eigen::AngleAxisd(angle, axis) * u0; }
+  Mat3 turn(double angle) const { return Eigen::AngleAxisd(angle, spin).toRotationMatrix(); }
+};
+
 TEST(WarmJump, CarriedTrackerEqualsAFreshOneAfterSidewaysJumps) {
   Elephants e;
   ASSERT_NO_FATAL_FAILURE(twoElephants(e));
@@ -106,14 +116,12 @@ TEST(WarmJump, AMotionItsEndsCertifyFreeEqualsAFreshTracker) {
     Elephants carried = e;
     carried.settings.rotation_mode = mode;
     for (int path = 0; path < 3; ++path) {
-      const Vec3 u0 = randomDirection(rng);
-      const Vec3 axis = u0.unitOrthogonal();
-      const Vec3 spin = randomDirection(rng);
+      const Orbit orbit(rng);
       PairTracker warm;
       for (int step = 0; step < 8; ++step) {
         // 5 % of the size away, each step 3 % of it along the opponent and a turn.
-        const Vec3 u = Eigen::AngleAxisd(0.03 * step, axis) * u0;
-        const Mat3 q = Eigen::AngleAxisd(0.02 * step, spin).toRotationMatrix();
+        const Vec3 u = orbit.direction(0.03 * step);
+        const Mat3 q = orbit.turn(0.02 * step);
         const Rigid pose{q, e.offsetAtGap(q, u, 0.05 * size) * u};
         PairTracker cold;
         const DirectedResult expected = carried.update(cold, pose);
@@ -147,16 +155,14 @@ TEST(WarmJump, SmallStepsWithinTheToleranceAfterAJumpEqualAFreshTracker) {
     for (const RotationMode mode : {RotationMode::Input, RotationMode::None}) {
       e.settings.rotation_mode = mode;
       for (int path = 0; path < 2; ++path) {
-        const Vec3 u0 = randomDirection(rng);
-        const Vec3 axis = u0.unitOrthogonal();
-        const Vec3 spin = randomDirection(rng);
+        const Orbit orbit(rng);
         PairTracker warm;
         for (int step = 0; step < 12; ++step) {
           // A 5 % jump every fourth step, else 0.05 % of the size and a small turn; the
           // target `gap` tolerances from the opponent.
           const double angle = 0.05 * (step / 4) + 5e-4 * step;
-          const Vec3 u = Eigen::AngleAxisd(angle, axis) * u0;
-          const Mat3 q = Eigen::AngleAxisd(5e-4 * step, spin).toRotationMatrix();
+          const Vec3 u = orbit.direction(angle);
+          const Mat3 q = orbit.turn(5e-4 * step);
           const Rigid pose{q, e.offsetAtGap(q, u, gap * e.settings.tolerance) * u};
           PairTracker cold;
           const DirectedResult expected = e.update(cold, pose);

@@ -57,6 +57,7 @@ void GroupPairQuery::contactsNearUncached(const Rigid& o_from_t, double threshol
   // ahead is cheaper than a new one, when that still covers it.
   const bool due = !near_.covers(o_from_t, threshold);
   near_.pending().approach = 0.0;  // paced by the kept pairs' cover from here
+  near_.pending().receding = false;
   const TraversalCounters ahead = advancePendingNear(o_from_t, threshold, due);
   if (!near_.covers(o_from_t, threshold)) {
     // Nothing gathered ahead covers it: a rebuild here, run as far as this pose needs
@@ -90,7 +91,9 @@ void GroupPairQuery::rebuildNearAhead(const Rigid& o_from_t, double threshold, d
   if (near_.covers(o_from_t, threshold)) return;
   if (!near_.pendingCovers(o_from_t, threshold)) startPendingNear(o_from_t, threshold + margin);
   // Paced by the gap left: done by the first contact, not left to it.
-  near_.pending().approach = std::max(gap, 0.0);
+  NearPairs::Pending& pending = near_.pending();
+  pending.receding = pending.approach > 0.0 && gap > pending.approach;
+  pending.approach = std::max(gap, 0.0);
   advancePendingNear(o_from_t, threshold, false);
 }
 

@@ -91,7 +91,9 @@ int NearPairs::pendingBudget(const Rigid& o_from_t, double threshold) const {
   // paced by the gap left to the surface (at a base share, a rebuild restarted on the
   // way in was mostly left to the first contact's call), and a rebuild overtaken by
   // the motion leaves its work as the next one's front.
-  const double room = std::max(coveredReach(o_from_t) - threshold, pending_.approach);
+  const double covered = coveredReach(o_from_t) - threshold;
+  if (pending_.receding && !(covered > 0.0)) return base;
+  const double room = std::max(covered, pending_.approach);
   if (!(room > 0.0)) return base;
   const double calls_left = std::max(1.0, std::floor(room / step));
   const int rest = std::max(expected_work_ - pending_.work, pending_.work);

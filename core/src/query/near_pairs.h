@@ -106,6 +106,7 @@ class NearPairs {
     /// Motion left before its contacts are due, when run ahead of a first contact
     /// (the distance there), else 0: paces it without kept pairs to cover the target.
     double approach = 0.0;
+    bool receding = false;  ///< that gap grew since the last call: no hurry
   };
   Pending& pending() { return pending_; }
   const Pending& pending() const { return pending_; }

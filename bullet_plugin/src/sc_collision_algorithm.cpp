@@ -779,7 +779,10 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   if (!closest_points_ && plugin_->stepBuffer().impactPass() && !plugin_->stepBuffer().rowsPass() &&
       ever_queried_ && !(queried_gap_ >= 0.0) && !(motionSinceQuery(wraps) > threshold))
     return;
-  if (!closest_points_ && stillApart(wraps, threshold)) {
+  // A pair apart by more than its motion since its last query cannot have an impact:
+  // the impact pass queries it only when the motion may have closed the gap itself.
+  const bool impact_pass = plugin_->stepBuffer().impactPass();
+  if (!closest_points_ && stillApart(wraps, impact_pass ? 0.0 : threshold)) {
     ++stats.pairs;
     ++stats.skipped;
     return;

@@ -849,10 +849,6 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   for (int dir = 0; dir < 2; ++dir)
     gather[dir] = respond(out[dir], dir, sides, state, spring, contact, query.tolerance, dt,
                           threshold, shifts[dir]);
-  if (impact_pass && stats.projected == projected_before) {
-    keepDetectionRows(threshold);
-    return;
-  }
   for (int dir = 0; dir < 2; ++dir) {
     points_.clear();
     if (gather[dir])
@@ -918,16 +914,6 @@ void ScCollisionAlgorithm::refreshRows(btPersistentManifold* m) const {
   // child's: with the child's pose every point of an offset child read as drifted by
   // the offset and was dropped, and the body fell a step whenever its rows were reused.
   m->refreshContactPoints(objects_[0]->getWorldTransform(), objects_[1]->getWorldTransform());
-}
-
-void ScCollisionAlgorithm::keepDetectionRows(double threshold) {
-  // No solver reads the rows before the next detection, which queries the pair again;
-  // only a pair now apart beyond the threshold may be skipped there (stillApart), so
-  // its rows go now.
-  rows_kept_ = false;
-  if (!(queried_gap_ > threshold)) return;
-  for (btPersistentManifold* m : manifolds_)
-    if (m != nullptr) m->clearManifold();
 }
 
 int ScCollisionAlgorithm::rowsAlong(const btPersistentManifold* m,

@@ -94,9 +94,6 @@ class ScCollisionAlgorithm : public AlgorithmBase {
   /// True when the last query's rows still hold: the bodies moved by less than a
   /// hundredth of the tolerance since, under the same settings.
   bool rowsStillHold(const btCollisionObjectWrapper* const wraps[2]) const;
-  /// An impact pass's query that projected nothing: the rows of the step's detection
-  /// stay (cleared when the pair is now apart beyond `threshold`), not kept for reuse.
-  void keepDetectionRows(double threshold);
   /// Keeps the poses and the gap of this step's query.
   void rememberQuery(const btCollisionObjectWrapper* const wraps[2], const DirectedResult out[2],
                      const Directions& dirs);

@@ -732,8 +732,7 @@ int ScCollisionAlgorithm::slotFor(const detail::ContactCluster& c, bool taken[kM
 }
 
 int ScCollisionAlgorithm::addPatchRows(int slot, const detail::ContactCluster& c, int begin,
-                                       int end, const btCollisionObjectWrapper* const wraps[2],
-                                       double stale_floor, btManifoldResult* result) {
+                                       int end, double stale_floor, btManifoldResult* result) {
   btPersistentManifold*& m = manifolds_[slot];
   if (m == nullptr) m = m_dispatcher->getNewManifold(objects_[0], objects_[1]);
   if (m->getNumContacts() > 0 && !sameNormal(m, c)) m->clearManifold();
@@ -743,14 +742,14 @@ int ScCollisionAlgorithm::addPatchRows(int slot, const detail::ContactCluster& c
   // went only after (a box sliding more than the breaking threshold in a step lost
   // one or two of its four ground rows, and rocked). Leaf contacts' patches keep old
   // points as support their rows may lack (dropStalePoints).
-  if (cornersOnly(c))
-    m->refreshContactPoints(wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform());
+  if (cornersOnly(c)) refreshRows(m);
   result->setPersistentManifold(m);
   for (int k = begin; k < end; ++k) {
     const detail::RowCandidate& p = c.points[static_cast<std::size_t>(k)];
     result->addContactPoint(toBt(p.normal), toBt(p.on_b), btScalar(p.separation));
   }
-  dropStalePoints(m, c, wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform(), stale_floor);
+  dropStalePoints(m, c, objects_[0]->getWorldTransform(), objects_[1]->getWorldTransform(),
+                  stale_floor);
   result->refreshContactPoints();
   return m->getNumContacts();
 }
@@ -780,7 +779,10 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   if (!closest_points_ && plugin_->stepBuffer().impactPass() && !plugin_->stepBuffer().rowsPass() &&
       ever_queried_ && !(queried_gap_ >= 0.0) && !(motionSinceQuery(wraps) > threshold))
     return;
-  if (!closest_points_ && stillApart(wraps, threshold)) {
+  // A pair apart by more than its motion since its last query cannot have an impact:
+  // the impact pass queries it only when the motion may have closed the gap itself.
+  const bool impact_pass = plugin_->stepBuffer().impactPass();
+  if (!closest_points_ && stillApart(wraps, impact_pass ? 0.0 : threshold)) {
     ++stats.pairs;
     ++stats.skipped;
     return;
@@ -790,8 +792,7 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
     // (as Bullet's own algorithms refresh theirs); stale depths would make the rows
     // push a body on after it moved out, a jitter of the size of the bound.
     for (btPersistentManifold* m : manifolds_)
-      if (m != nullptr && m->getNumContacts() > 0)
-        m->refreshContactPoints(wraps[0]->getWorldTransform(), wraps[1]->getWorldTransform());
+      if (m != nullptr && m->getNumContacts() > 0) refreshRows(m);
     accumulate(stats, queried_stats_);
     ++stats.reused;
     return;
@@ -887,10 +888,10 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
     // own, and only them (old points there are the rows' own past places, no support).
     // A patch of corners (up to 16) is left to the reduction, as before.
     const int held = cornersOnly(c) ? c.point_count : std::min(c.point_count, MANIFOLD_CACHE_SIZE);
-    rows += addPatchRows(slot, c, 0, held, wraps, stale_floor, result);
+    rows += addPatchRows(slot, c, 0, held, stale_floor, result);
     if (held == c.point_count) continue;
     taken[kPatches + slot] = true;
-    rows += addPatchRows(kPatches + slot, c, held, c.point_count, wraps, kInfinity, result);
+    rows += addPatchRows(kPatches + slot, c, held, c.point_count, kInfinity, result);
   }
   for (int i = 0; i < kManifolds; ++i)
     if (!taken[i] && manifolds_[i] != nullptr) manifolds_[i]->clearManifold();
@@ -906,6 +907,13 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
     if (taken[i])
       detail::softenRows(manifolds_[i], spring, dt, contact.friction_scale,
                          rowsAlong(manifolds_[i], taken));
+}
+
+void ScCollisionAlgorithm::refreshRows(btPersistentManifold* m) const {
+  // The points are held in the bodies' frames (btManifoldResult), not in a compound
+  // child's: with the child's pose every point of an offset child read as drifted by
+  // the offset and was dropped, and the body fell a step whenever its rows were reused.
+  m->refreshContactPoints(objects_[0]->getWorldTransform(), objects_[1]->getWorldTransform());
 }
 
 int ScCollisionAlgorithm::rowsAlong(const btPersistentManifold* m,

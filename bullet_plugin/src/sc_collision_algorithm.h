@@ -81,8 +81,9 @@ class ScCollisionAlgorithm : public AlgorithmBase {
   int slotFor(const detail::ContactCluster& c, bool taken[kManifolds]);
   /// Adds patch `c`'s rows [begin, end) to manifold `slot`; returns its points.
   int addPatchRows(int slot, const detail::ContactCluster& c, int begin, int end,
-                   const btCollisionObjectWrapper* const wraps[2], double stale_floor,
-                   btManifoldResult* result);
+                   double stale_floor, btManifoldResult* result);
+  /// Bullet's refresh of manifold `m`'s points at the bodies' current poses.
+  void refreshRows(btPersistentManifold* m) const;
   /// Rows of the taken manifolds whose normal is within kClusterCos of `m`'s.
   int rowsAlong(const btPersistentManifold* m, const bool taken[kManifolds]) const;
   /// How much the two bodies' surfaces can have moved relative to each other since

@@ -46,7 +46,9 @@ TEST_P(CompoundLanding, NeverGainsEnergyAndComesToRest) {
     const double y = body->getCenterOfMassPosition().y();
     const double v = body->getLinearVelocity().length();
     most = std::max(most, g * y + 0.5 * v * v);
-    speed = v;
+    // The largest over the last second: a body that falls one step in four while
+    // resting (rows of offset children dropped) can read slow at any one step.
+    if (i >= steps - landed) speed = std::max(speed, v);
   }
   EXPECT_LT(most, g * 0.1 + 0.1 * (start - g * 0.1)) << "bounced back up";
   EXPECT_NEAR(body->getCenterOfMassPosition().y(), 0.1, 2e-3);

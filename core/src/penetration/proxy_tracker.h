@@ -91,9 +91,9 @@ class ProxyTracker {
   /// (the first update after a long move), INPUT or NONE: the slide would gather them
   /// anew around it. Instead the goal is measured into `out` (`measured`), as a fresh
   /// tracker does,
-  /// and when it is apart by more than half the skin (the sweep stops within that) the
-  /// proxy's centre is swept there at its rotation, which then turns in place (as the
-  /// slide turns it). True when that sweep meets nothing: the proxy is at the goal.
+  /// and when it is apart by more than the skin the proxy's centre is swept there at
+  /// its rotation, which then turns in place (as the slide turns it). True when that
+  /// sweep meets nothing: the proxy is at the goal.
   bool sweptFree(GroupPairQuery& query, const Rigid& goal, const Vec3& center,
                  const PairSettings& settings, ProxyOutcome& out, bool& measured);
   /// Steps 2-3 for this update's rotation mode; true when the proxy reached the goal.

@@ -774,20 +774,20 @@ void ScCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body
   const double threshold = double(std::min(
       objects_[0]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
       objects_[1]->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold)));
+  const bool impact_pass = plugin_->stepBuffer().impactPass();
   // After the integration only an impact needs a query: a pair in contact that moved
   // less than the threshold is its rows' to hold until the next step's detection.
-  if (!closest_points_ && plugin_->stepBuffer().impactPass() && !plugin_->stepBuffer().rowsPass() &&
-      ever_queried_ && !(queried_gap_ >= 0.0) && !(motionSinceQuery(wraps) > threshold))
+  if (!closest_points_ && impact_pass && !plugin_->stepBuffer().rowsPass() && ever_queried_ &&
+      !(queried_gap_ >= 0.0) && !(motionSinceQuery(wraps) > threshold))
     return;
   // A pair apart by more than its motion since its last query cannot have an impact:
   // the impact pass queries it only when the motion may have closed the gap itself.
-  const bool impact_pass = plugin_->stepBuffer().impactPass();
   if (!closest_points_ && stillApart(wraps, impact_pass ? 0.0 : threshold)) {
     ++stats.pairs;
     ++stats.skipped;
     return;
   }
-  if (!closest_points_ && !plugin_->stepBuffer().impactPass() && rowsStillHold(wraps)) {
+  if (!closest_points_ && !impact_pass && rowsStillHold(wraps)) {
     // The manifolds still hold the query's rows: their depths follow the small motion
     // (as Bullet's own algorithms refresh theirs); stale depths would make the rows
     // push a body on after it moved out, a jitter of the size of the bound.

@@ -149,8 +149,8 @@ TEST(WarmJump, SmallStepsWithinTheToleranceAfterAJumpEqualAFreshTracker) {
   e.settings.tolerance = 1e-3 * size;
   Rng rng(31);
   int compared = 0;
-  // 0.6 tolerances, and 0.19: between half the skin (TOLERANCE/4), within which the
-  // sweep stops, and the skin.
+  // 0.6 tolerances, and 0.19: within the skin (TOLERANCE/4), where the slide gathers
+  // the contacts, but beyond half of it, where the sweep stops.
   for (const double gap : {0.6, 0.19})
     for (const RotationMode mode : {RotationMode::Input, RotationMode::None}) {
       e.settings.rotation_mode = mode;

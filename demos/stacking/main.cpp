@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Stacking demo: Bullet rigid bodies with SmartCollision contacts (potential or
 // manifold model, switchable with 'm'): a tower, a pyramid, a 1:100 mass-ratio stack
-// and real meshes resting on each other. --headless runs a fixed time and writes a
-// PNG and JSON metrics.
+// and real meshes resting on each other, or a pile of meshes in a box. --headless runs
+// a fixed time and writes a PNG and JSON metrics.
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
@@ -252,9 +252,8 @@ class Demo {
   }
 
   /// A 3 m x 3 m box of walls 1.2 m high (Bullet boxes: primitives stay primitives)
-  /// and 24 of CGAL's knots (non-convex, 0.5 m) dropped into it in layers, turned at
-  /// random. (Cows, elephants and camels in the same pile take 120 to 520 ms a step:
-  /// issue 16 open, docs/bullet.md.)
+  /// and 24 non-convex bodies of 0.5 m dropped into it in layers, turned at random:
+  /// CGAL's knots, or the --mesh files taken in turn (docs/bullet.md).
   void addPile() {
     for (const sc::demo::PileWall& w : sc::demo::pileWalls()) {
       wall_shapes_.push_back(std::make_unique<btBoxShape>(w.half_extents));
@@ -266,11 +265,11 @@ class Demo {
       b.color[0] = b.color[1] = b.color[2] = 0.6f;
       walls_.push_back(b);
     }
-    const char* names[1] = {"knot1"};
+    std::vector<std::string> paths = options_.meshes;
+    if (paths.empty()) paths.push_back(sc::demo::demoMesh("knot1.off"));
     std::vector<std::shared_ptr<sc::bullet::ScBulletShape>> kinds;
-    for (const char* name : names) {
-      sc::MeshData mesh =
-          sc::support::readOffOrEmpty(sc::demo::demoMesh(std::string(name) + ".off"));
+    for (const std::string& path : paths) {
+      sc::MeshData mesh = sc::support::readOffOrEmpty(path);
       auto shape = mesh.triangles.empty() ? nullptr
                                           : makeShape(sc::support::fitToSize(std::move(mesh), 0.5));
       if (!shape) continue;
@@ -278,8 +277,10 @@ class Demo {
       mesh_draw_.push_back(std::make_unique<sc::demo::DrawMesh>(drawMeshOf(*shape)));
     }
     if (kinds.empty()) {
-      std::fprintf(stderr, "cannot read %s (run scripts/setup.sh)\n",
-                   sc::demo::demoMesh("knot1.off").c_str());
+      std::fprintf(stderr,
+                   options_.meshes.empty() ? "cannot read %s (run scripts/setup.sh)\n"
+                                           : "no mesh could be loaded from --mesh %s ...\n",
+                   paths.front().c_str());
       std::exit(1);
     }
     const std::vector<sc::demo::PileBodyPose> poses = sc::demo::pileBodyPoses(24, options_.seed);
@@ -377,6 +378,7 @@ class Demo {
 };
 
 bool parse(int argc, char** argv, Options& o) {
+  bool scene_set = false;
   for (int i = 1; i < argc; ++i) {
     if (sc::demo::readHeadlessOption(argc, argv, i, o)) continue;
     const std::string a = argv[i];
@@ -384,6 +386,7 @@ bool parse(int argc, char** argv, Options& o) {
     auto value = [&](std::string& out) { return sc::demo::nextValue(argc, argv, i, out); };
     if (a == "--scene" && value(v)) {
       o.scene = v;
+      scene_set = true;
     } else if (a == "--model" && value(v)) {
       o.model = v == "manifold" ? ContactModel::Manifold : ContactModel::Potential;
     } else if (a == "--rotation" && value(v)) {
@@ -396,18 +399,19 @@ bool parse(int argc, char** argv, Options& o) {
       o.steps = std::atol(v.c_str());
     } else if (a == "--mesh" && value(v)) {
       o.meshes.push_back(v);
-      o.scene = "meshes";
     } else {
       std::fprintf(
           stderr,
           "usage: %s [--scene tower|pyramid|massratio|meshes|pile] [--model potential|manifold]\n"
           "          [--rotation input|mix|free] [--hz RATE (240)] [--seed N (pile, 7)]\n"
-          "          [--mesh BASE.off --mesh BODY.off...] [--headless [--seconds S | --steps N] "
-          "[--png F] [--json F]]\n",
+          "          [--mesh BASE.off --mesh BODY.off... (meshes) | --mesh BODY.off... (pile)]\n"
+          "          [--headless [--seconds S | --steps N] [--png F] [--json F]]\n",
           argv[0]);
       return false;
     }
   }
+  // Meshes alone ask for the meshes scene; with --scene pile they fill the pile.
+  if (!o.meshes.empty() && !scene_set) o.scene = "meshes";
   return o.seconds > 0.0 && std::isfinite(o.seconds) && o.hz >= 1.0 && o.hz <= 1e5;
 }
 

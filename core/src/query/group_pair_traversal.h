@@ -81,7 +81,10 @@ bool GroupPairQuery::runTraversal(Policy& policy, std::vector<NodePair>& heap, i
         continue;
       }
     }
-    for (const NodePair& c : childrenOf(p)) offer(policy, heap, c);
+    for (const NodePair& c : childrenOf(p)) {
+      caches_.prefetch(keyOf(c));  // its GJK's warm start, read when it is taken
+      offer(policy, heap, c);
+    }
   }
   heap.clear();
   return true;

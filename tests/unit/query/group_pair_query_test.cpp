@@ -982,20 +982,6 @@ TEST(GroupPairQueryPacing, ALandingPlateSpreadsItsRebuildsOverTheCalls) {
       most, largest_rebuild, want.size());
 }
 
-TEST(PairCache, KeepsEntriesAndStaysBounded) {
-  PairCache cache;
-  cache.at(7).count = 3;
-  EXPECT_EQ(cache.at(7).count, 3);
-  EXPECT_EQ(cache.at(8).count, 0);
-  for (std::uint64_t k = 0; k < 100000; ++k) cache.at(k * 7919).hint_a = static_cast<int>(k);
-  EXPECT_LE(cache.capacity(), PairCache::kMaxEntries);
-  // The most recent keys are still held.
-  for (std::uint64_t k = 99990; k < 100000; ++k)
-    EXPECT_EQ(cache.at(k * 7919).hint_a, static_cast<int>(k));
-  cache.clear();
-  EXPECT_EQ(cache.at(99999 * 7919).hint_a, 0);
-}
-
 // Two overlapping soups of 200 triangles: 40,000 leaf pairs within the threshold,
 // more than kMaxContacts. Both queries keep kMaxContacts pairs, sorted (memory
 // bounded; two overlapping 10k-triangle meshes would hold 10^8), and contactsNear

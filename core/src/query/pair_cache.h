@@ -45,10 +45,13 @@ class PairCache {
     return set.cache[victim];
   }
 
-  /// Starts loading the set of `key` into the cache, ahead of at(key): the tables
-  /// of many pairs outgrow the caches, and a lookup otherwise waits on memory.
+  /// Starts loading the set of `key` (its keys and its warm starts) into the cache,
+  /// ahead of at(key): the tables of many pairs outgrow the caches, and a lookup and
+  /// the GJK it starts otherwise wait on memory.
   void prefetch(std::uint64_t key) const {
-    if (!sets_.empty()) __builtin_prefetch(&sets_[setOf(key)]);
+    if (sets_.empty()) return;
+    const char* set = reinterpret_cast<const char*>(&sets_[setOf(key)]);
+    for (std::size_t line = 0; line < sizeof(Set); line += 64) __builtin_prefetch(set + line);
   }
 
   void clear() {

@@ -217,8 +217,9 @@ void reportApart(const ConvexPair& pair, const Rigid& goal, const PairSettings& 
 /// general path's projectTranslation; false when the goal only touches (then
 /// `touch_normal` is the contact's normal, if any).
 bool reportPenetration(const ConvexPair& pair, const Rigid& proxy, const Probe& at_proxy,
-                       const Rigid& goal, const Vec3& center, const PairSettings& settings,
-                       bool ran_out, Vec3& touch_normal, ProxyOutcome& out) {
+                       const Rigid& goal, const Vec3& center, double size,
+                       const PairSettings& settings, bool ran_out, Vec3& touch_normal,
+                       ProxyOutcome& out) {
   const Probe& p = at_proxy;
   Rigid contact_pose = proxy;
   if (p.contact) {
@@ -226,7 +227,7 @@ bool reportPenetration(const ConvexPair& pair, const Rigid& proxy, const Probe& 
     const Vec3 z = projectOnto(goal * center, p.n, p.b);
     if ((z - y).norm() <= settings.tolerance) contact_pose = poseAt(proxy.rotation, center, z);
   }
-  if (!reportDepth(goal, contact_pose, center, out)) {  // the goal only touches
+  if (!reportDepth(goal, contact_pose, center, size, out)) {  // the goal only touches
     if (p.contact) touch_normal = p.n;
     return false;
   }
@@ -284,8 +285,8 @@ bool trackConvexPair(const GroupPairQuery& query, const GroupView& target,
   if (!reached) {
     const Probe at_proxy =
         has_settled ? settled : probeAt(pair, proxy, center, previous, settings.tolerance);
-    if (reportPenetration(pair, proxy, at_proxy, goal, center, settings, ran_out, touch_normal,
-                          result)) {
+    if (reportPenetration(pair, proxy, at_proxy, goal, center, size, settings, ran_out,
+                          touch_normal, result)) {
       tracker.startAt(proxy, true);
       out = result;
       return true;

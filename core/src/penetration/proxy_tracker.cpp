@@ -326,7 +326,11 @@ Rigid ProxyTracker::impactPose(GroupPairQuery& query, const Rigid& goal, const V
   motion.start = previous_proxy_;
   motion.center = center;
   motion.dc = goal * center - previous_proxy_ * center;
-  motion.dtheta = rotationVector(goal.rotation * previous_proxy_.rotation.transpose());
+  // No turn at all is exactly none: R R^T rounds, and the impact's rotation would then
+  // differ from the goal's by ~1e-17 rad at every later update.
+  motion.dtheta = goal.rotation == previous_proxy_.rotation
+                      ? Vec3::Zero()
+                      : rotationVector(goal.rotation * previous_proxy_.rotation.transpose());
   skip_.clear();
   const double s =
       advance(query, motion, skinOf(settings), skip_, twist_.candidates, slideMarginOf(settings));
@@ -342,14 +346,19 @@ bool ProxyTracker::turn(GroupPairQuery& query, const Rigid& goal, const Vec3& ce
   return proxy_.rotation == goal.rotation && proxy_.translation == goal.translation;
 }
 
-bool reportDepth(const Rigid& goal, const Rigid& contact_pose, const Vec3& center,
+bool reportDepth(const Rigid& goal, const Rigid& contact_pose, const Vec3& center, double size,
                  ProxyOutcome& out) {
-  const Vec3 tpdv = goal * center - contact_pose * center;
+  const Vec3 goal_center = goal * center;
+  const Vec3 tpdv = goal_center - contact_pose * center;
   // Exactly zero when the proxy follows the goal's rotation (Input mode).
   const Vec3 rpdv = contact_pose.rotation == goal.rotation
                         ? Vec3::Zero()
                         : rotationVector(goal.rotation * contact_pose.rotation.transpose());
-  if (tpdv.isZero(0.0) && rpdv.isZero(0.0)) return false;
+  // A proxy at the goal's centre whose rotation, written again (a twist's in Free and
+  // Mix), differs from the goal's by rounding alone (~1e-17 rad) has no depth: else a
+  // pair lifted apart after a contact reported one at every later update.
+  const double rounding = 1e-12 * (size + goal_center.norm() + center.norm());
+  if (tpdv.isZero(0.0) && rpdv.norm() * size <= rounding) return false;
   out.code = ErrorCode::Ok;
   out.penetrating = true;
   out.contact_pose = contact_pose;
@@ -373,7 +382,7 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, c
   const int main = turned ? projectTwist(query, goal, center, settings, contact_pose, normal)
                           : projectTranslation(query, goal, center, settings, contact_pose, normal);
   if (main == kGoalTouches) return false;
-  if (!reportDepth(goal, contact_pose, center, out)) {  // the goal only touches
+  if (!reportDepth(goal, contact_pose, center, query.targetSize(), out)) {  // only touches
     if (main >= 0) touch_normal_ = normal;
     return false;
   }

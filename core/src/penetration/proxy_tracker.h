@@ -29,8 +29,9 @@ struct ProxyOutcome {
 
 /// The depth of `goal` against a proxy at `contact_pose` (centre `center`): fills the
 /// outcome's code, penetration vectors, contact pose and distance, and returns true;
-/// false, leaving `out` alone, when the goal only touches (both vectors exactly 0).
-bool reportDepth(const Rigid& goal, const Rigid& contact_pose, const Vec3& center,
+/// false, leaving `out` alone, when the goal only touches: no target point (within
+/// `size` of the centre) moves farther than the rounding of a pose between the two.
+bool reportDepth(const Rigid& goal, const Rigid& contact_pose, const Vec3& center, double size,
                  ProxyOutcome& out);
 
 /// Outline of one update (design.md section 4):

@@ -4,7 +4,8 @@
 // rotation mode. In None, Free and Mix the proxy's rotation, written again (the
 // impact's, a twist's), differed from the goal's by rounding (~1e-17 rad): the
 // direction reported a depth of that RPDV alone, distance -0, at every update after
-// the lift.
+// the lift. None's orientation, frozen while the penetration lasts, now ends with it:
+// a body turned while pressed in and then lifted away reported the turn as a depth.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -91,6 +92,48 @@ TEST(LiftApartAfterContact, EveryRotationModeReportsAFreshTrackersDistance) {
     }
   }
   EXPECT_EQ(compared, 2 * 4 * 12 * 3 * 3 * 2);
+}
+
+TEST(LiftApartAfterContact, NoneTurnedWhilePressedInThenLiftedAwayReportsApart) {
+  const ModelPtr torus = closedModel(torusMesh(0.17, 0.08, 32, 12));
+  const ModelPtr box = boxModel(Vec3(0.5, 0.5, 0.5));
+  ASSERT_TRUE(torus && box);
+  Rng rng(9);
+  int compared = 0;
+  for (const Model* m : {torus.get(), box.get()}) {
+    for (int trial = 0; trial < 10; ++trial) {
+      Pair p{{m, Rigid(), 1}, {m, Rigid(), 2}, SceneSettings()};
+      p.settings.rotation_mode = RotationMode::None;
+      const Quat q = randomRotation(rng);
+      const Vec3 u = randomDirection(rng);
+      const double s = p.touching(u, q);
+      const Quat turned = Quat(Eigen::AngleAxisd(0.1, randomDirection(rng))) * q;
+      PairTracker carried;
+      DirectedResult out[2], expected[2];
+      p.update(carried, s + 0.01, u, q, out);
+      p.update(carried, s - 0.005, u, q, out);       // pressed in
+      p.update(carried, s - 0.005, u, turned, out);  // turned while in
+      // At the first lift (5 cm) a turned box may still touch the opponent (a fresh
+      // tracker reads 0): None's orientation at the impact holds while the goal
+      // intersects. From the second on the goal is free.
+      for (int lift = 1; lift <= 4; ++lift) {
+        const double apart = s + 0.05 * lift;
+        p.update(carried, apart, u, turned, out);
+        if (lift == 1) continue;
+        PairTracker fresh;
+        p.update(fresh, apart, u, turned, expected);
+        for (int d = 0; d < 2; ++d) {
+          SCOPED_TRACE(testing::Message()
+                       << "trial " << trial << " lift " << lift << " direction " << d);
+          ASSERT_EQ(out[d].code, ErrorCode::Ok);
+          EXPECT_FALSE(out[d].hasDepth());
+          EXPECT_NEAR(out[d].distance, expected[d].distance, 1e-9);
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(compared, 2 * 10 * 3 * 2);
 }
 
 }  // namespace

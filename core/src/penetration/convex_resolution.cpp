@@ -260,7 +260,13 @@ bool trackConvexPair(const GroupPairQuery& query, const GroupView& target,
     return true;
   }
   const Rigid previous = tracker.proxy();
-  const bool freeze = mode == RotationMode::None && tracker.penetrating();
+  // None's orientation at the impact lasts while the goal intersects (as follow()).
+  bool freeze = mode == RotationMode::None && tracker.penetrating();
+  if (freeze) {
+    bool beyond = false;
+    const LeafContact c = pair.at(goal, 0.0, beyond);
+    freeze = !beyond && (c.intersecting || !(c.gap > 0.0));
+  }
   const Mat3 rotation = freeze ? previous.rotation : goal.rotation;
   const Vec3 goal_center = goal * center;
   const double size = query.targetSize();

@@ -285,7 +285,11 @@ bool ProxyTracker::follow(GroupPairQuery& query, const Rigid& goal, const Vec3& 
   if (mode == RotationMode::Free || mode == RotationMode::Mix)
     return turn(query, goal, center, settings, out);
   const Vec3 goal_center = goal * center;
-  const bool freeze = mode == RotationMode::None && penetrating_;
+  // None keeps the orientation at the impact while the penetration lasts: a goal free
+  // itself ends it, and the proxy follows the goal's orientation as Input's does (else
+  // a body turned while pressed in, then lifted away, reported the turn as a depth at
+  // every later update).
+  const bool freeze = mode == RotationMode::None && penetrating_ && query.intersects(goal);
   const Mat3 rotation = freeze ? previous_proxy_.rotation : goal.rotation;
   bool feasible = true;
   const TravelBudget travel = travel_;  // for a turn from the last free proxy

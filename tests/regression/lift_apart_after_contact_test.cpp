@@ -8,6 +8,7 @@
 // a body turned while pressed in and then lifted away reported the turn as a depth.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "smartcollision/collision.h"
@@ -24,7 +25,17 @@ Placement at(const Vec3& c, const Quat& q) {
   return p;
 }
 
+/// A torus (the general path) and a cube (the convex fast path), each paired with itself.
+struct Shapes {
+  ModelPtr torus = closedModel(torusMesh(0.17, 0.08, 32, 12));
+  ModelPtr box = boxModel(Vec3(0.5, 0.5, 0.5));
+  std::array<const Model*, 2> both() const { return {torus.get(), box.get()}; }
+};
+
 struct Pair {
+  Pair(const Model* m, RotationMode mode) : a{m, Rigid(), 1}, b{m, Rigid(), 2} {
+    settings.rotation_mode = mode;
+  }
   Part a, b;
   SceneSettings settings;
   void update(PairTracker& t, double s, const Vec3& u, const Quat& q, DirectedResult out[2]) const {
@@ -50,17 +61,15 @@ struct Pair {
 };
 
 TEST(LiftApartAfterContact, EveryRotationModeReportsAFreshTrackersDistance) {
-  const ModelPtr torus = closedModel(torusMesh(0.17, 0.08, 32, 12));
-  const ModelPtr box = boxModel(Vec3(0.5, 0.5, 0.5));
-  ASSERT_TRUE(torus && box);
+  const Shapes shapes;
+  ASSERT_TRUE(shapes.torus && shapes.box);
   Rng rng(5);
   int compared = 0;
-  for (const Model* m : {torus.get(), box.get()}) {
+  for (const Model* m : shapes.both()) {
     for (const RotationMode mode :
          {RotationMode::None, RotationMode::Input, RotationMode::Free, RotationMode::Mix}) {
       for (int trial = 0; trial < 12; ++trial) {
-        Pair p{{m, Rigid(), 1}, {m, Rigid(), 2}, SceneSettings()};
-        p.settings.rotation_mode = mode;
+        const Pair p(m, mode);
         const Quat q = randomRotation(rng);
         const Vec3 u = randomDirection(rng);
         const double s = p.touching(u, q);
@@ -95,15 +104,13 @@ TEST(LiftApartAfterContact, EveryRotationModeReportsAFreshTrackersDistance) {
 }
 
 TEST(LiftApartAfterContact, NoneTurnedWhilePressedInThenLiftedAwayReportsApart) {
-  const ModelPtr torus = closedModel(torusMesh(0.17, 0.08, 32, 12));
-  const ModelPtr box = boxModel(Vec3(0.5, 0.5, 0.5));
-  ASSERT_TRUE(torus && box);
+  const Shapes shapes;
+  ASSERT_TRUE(shapes.torus && shapes.box);
   Rng rng(9);
   int compared = 0;
-  for (const Model* m : {torus.get(), box.get()}) {
+  for (const Model* m : shapes.both()) {
     for (int trial = 0; trial < 10; ++trial) {
-      Pair p{{m, Rigid(), 1}, {m, Rigid(), 2}, SceneSettings()};
-      p.settings.rotation_mode = RotationMode::None;
+      const Pair p(m, RotationMode::None);
       const Quat q = randomRotation(rng);
       const Vec3 u = randomDirection(rng);
       const double s = p.touching(u, q);

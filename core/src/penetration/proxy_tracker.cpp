@@ -390,6 +390,16 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, c
     if (main >= 0) touch_normal_ = normal;
     return false;
   }
+  // A turned proxy held a skin away, its goal free: the projection's rows are linear
+  // in the turn, so a goal just out of contact could keep the proxy turned away from
+  // it, a rotational depth, for as long as it stayed within the skin. A free goal
+  // whose depth moves no point farther than the tolerance only touches: no wall
+  // thinner than the tolerance is resolved.
+  if (turned && out.tpdv.norm() + out.rpdv.norm() * query.targetSize() <= settings.tolerance &&
+      !query.intersects(goal)) {
+    if (main >= 0) touch_normal_ = normal;
+    return false;
+  }
   out.lagging = ran_out_ || main < 0;
   if (main >= 0) {
     out.contact = contacts_[main];

@@ -395,7 +395,7 @@ bool ProxyTracker::reportPenetration(GroupPairQuery& query, const Rigid& goal, c
   // it, a rotational depth, for as long as it stayed within the skin. A free goal
   // whose depth moves no point farther than the tolerance only touches: no wall
   // thinner than the tolerance is resolved.
-  if (turned && out.tpdv.norm() + out.rpdv.norm() * query.targetSize() <= settings.tolerance &&
+  if (turned && query.displacementBound(contact_pose, goal) <= settings.tolerance &&
       !query.intersects(goal)) {
     if (main >= 0) touch_normal_ = normal;
     return false;
